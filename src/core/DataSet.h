@@ -1,0 +1,58 @@
+#pragma once
+// Everything a terrain argument resolves to (DESIGN sec. 4): the terrain, its
+// lighting and fog, where the vehicle starts, the objects on it, and a record
+// of how it was obtained (for `overflight info`).
+#include "core/Scene.h"
+#include "core/Terrain.h"
+
+#include <glm/vec3.hpp>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace overflight {
+
+struct Environment {
+    glm::vec3 sun_dir{0.3f, 0.8f, 0.5f};   // towards the sun, world space (normalised on use)
+    glm::vec3 sun_color{1.0f, 0.96f, 0.9f};
+    glm::vec3 ambient{0.35f, 0.38f, 0.45f};
+    float fog_density = 0.0f;              // GL_EXP fog: f = exp(-density * distance)
+    glm::vec3 fog_color{0.72f, 0.80f, 0.90f};
+    glm::vec3 sky_zenith{0.30f, 0.50f, 0.85f};
+    glm::vec3 sky_horizon{0.72f, 0.80f, 0.90f};
+};
+
+struct VehicleStart {
+    bool given = false;   // false: the caller picks (terrain centre)
+    double x = 0, z = 0;
+    double heading = 0;   // degrees
+};
+
+// Provenance of a loaded terrain, reported by `overflight info`.
+struct TerrainInfo {
+    std::string source;            // path or "demo"
+    std::string kind;              // "hovercraft", "gdal", "demo", "tiles"
+    std::string driver;            // GDAL driver short name, or "PGM"
+    std::string crs;               // WKT name of the CRS, empty if none
+    std::string source_crs;        // before reprojection
+    bool reprojected = false;
+    std::string reprojection;      // what was done, e.g. "EPSG:4326 -> UTM 10N (EPSG:32610), bilinear, 83.2 m"
+    std::string vertical_units = "metre";
+    double unit_to_metre = 1.0;
+    long long nodata_filled = 0;
+    std::string nodata_method;     // how no-data was filled
+    std::string color_source;      // "color.ppm", a raster path, "elevation ramp + hillshade", "procedural"
+    int source_rows = 0, source_cols = 0;
+    std::vector<std::pair<std::string, std::string>> metadata; // GDAL metadata (USGS Record A fields, ...)
+};
+
+struct DataSet {
+    Terrain terrain;
+    Environment environment;
+    VehicleStart start;
+    Scene scene;
+    TerrainInfo info;
+};
+
+} // namespace overflight
