@@ -1,6 +1,8 @@
 # Project-wide warning and sanitizer flags, applied to our own targets only.
 function(overflight_target_defaults target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wno-missing-field-initializers)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wno-missing-field-initializers
+    # GCC 12 reports false -Wrestrict positives inside std::string (GCC bug 105329).
+    $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   if(OVERFLIGHT_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -1,0 +1,68 @@
+// Based on: gdaldem hillshade (Horn 1981 gradient) and gdaldem color-relief.
+#include "core/Shading.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace overflight {
+
+float hillshade(const Terrain& t, int row, int col, float azimuth_deg, float altitude_deg) {
+    // Horn's 3x3 weighted gradient, edges clamped; same formula as gdaldem so
+    // pictures read the same as a GIS user's hillshade layer.
+    auto z = [&](int r, int c) {
+        return t.sample_height(std::clamp(r, 0, t.rows() - 1), std::clamp(c, 0, t.cols() - 1));
+    };
+    const float a = z(row - 1, col - 1), b = z(row - 1, col), c = z(row - 1, col + 1);
+    const float d = z(row, col - 1), f = z(row, col + 1);
+    const float g = z(row + 1, col - 1), h = z(row + 1, col), i = z(row + 1, col + 1);
+    const float dzdx = ((c + 2 * f + i) - (a + 2 * d + g)) / (8.0f * t.h_scale());
+    const float dzdy = ((g + 2 * h + i) - (a + 2 * b + c)) / (8.0f * t.h_scale()); // +y = south
+    const float kPi = 3.14159265358979f;
+    const float slope = std::atan(std::sqrt(dzdx * dzdx + dzdy * dzdy));
+    const float aspect = std::atan2(dzdy, -dzdx);
+    const float zenith = (90.0f - altitude_deg) * kPi / 180.0f;
+    const float azimuth = (360.0f - azimuth_deg + 90.0f) * kPi / 180.0f; // to math angle
+    const float shade = std::cos(zenith) * std::cos(slope) + std::sin(zenith) * std::sin(slope) * std::cos(azimuth - aspect);
+    return std::clamp(shade, 0.0f, 1.0f);
+}
+
+Rgb8 elevation_ramp(float height, float min_height, float max_height, float sea_level) {
+    struct Stop { float t; float r, g, b; };
+    if (height < sea_level) {
+        // Deeper water is darker; depth relative to the deepest point.
+        const float depth = std::clamp((sea_level - height) / std::max(sea_level - min_height, 1.0f), 0.0f, 1.0f);
+        return Rgb8{std::uint8_t(40 - 20 * depth), std::uint8_t(110 - 50 * depth), std::uint8_t(170 - 50 * depth)};
+    }
+    static constexpr Stop stops[] = {
+        {0.00f, 214, 201, 150}, // beach
+        {0.03f, 120, 160, 80},  // grass
+        {0.25f, 60, 110, 50},   // forest
+        {0.55f, 120, 105, 90},  // rock
+        {0.80f, 150, 140, 135}, // high rock
+        {0.92f, 245, 245, 250}, // snow
+        {1.00f, 255, 255, 255},
+    };
+    const float t = std::clamp((height - sea_level) / std::max(max_height - sea_level, 1e-3f), 0.0f, 1.0f);
+    std::size_t k = 1;
+    while (k + 1 < std::size(stops) && stops[k].t < t) ++k;
+    const Stop& lo = stops[k - 1];
+    const Stop& hi = stops[k];
+    const float s = std::clamp((t - lo.t) / (hi.t - lo.t), 0.0f, 1.0f);
+    return Rgb8{std::uint8_t(lo.r + (hi.r - lo.r) * s), std::uint8_t(lo.g + (hi.g - lo.g) * s),
+                std::uint8_t(lo.b + (hi.b - lo.b) * s)};
+}
+
+void shade_by_elevation(Terrain& t, float sea_level) {
+    const float lo = t.min_height(), hi = t.max_height();
+    tbb::parallel_for(0, t.rows(), [&](int row) {
+        for (int col = 0; col < t.cols(); ++col) {
+            const Rgb8 base = elevation_ramp(t.sample_height(row, col), lo, hi, sea_level);
+            const float k = 0.35f + 0.65f * hillshade(t, row, col);
+            t.color(row, col) = Rgb8{std::uint8_t(base.r * k), std::uint8_t(base.g * k), std::uint8_t(base.b * k)};
+        }
+    });
+}
+
+} // namespace overflight
