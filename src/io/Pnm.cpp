@@ -97,8 +97,6 @@ PnmHeader parse_header(const std::uint8_t* data, std::size_t size, const std::st
     return h;
 }
 
-std::vector<std::uint8_t> read_or_throw(const std::string& path) { return read_file_bytes(path); }
-
 void write_bytes(const std::string& path, const std::string& header, const std::vector<std::uint8_t>& body) {
     write_atomically(path, [&](const std::string& temp) {
         FILE* f = std::fopen(temp.c_str(), "wb");
@@ -143,12 +141,12 @@ ColorImage parse_ppm(const std::uint8_t* data, std::size_t size, const std::stri
 }
 
 GrayImage16 read_pgm(const std::string& path) {
-    const auto bytes = read_or_throw(path);
+    const auto bytes = read_file_bytes(path);
     return parse_pgm(bytes.data(), bytes.size(), path);
 }
 
 ColorImage read_ppm(const std::string& path) {
-    const auto bytes = read_or_throw(path);
+    const auto bytes = read_file_bytes(path);
     return parse_ppm(bytes.data(), bytes.size(), path);
 }
 

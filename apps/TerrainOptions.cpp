@@ -1,0 +1,17 @@
+#include "TerrainOptions.h"
+
+namespace overflight::app {
+
+void add_terrain_options(CLI::App& cmd, TerrainArgs& args) {
+    cmd.add_option("terrain", args.terrain,
+                   "demo | hovercraft data set directory (map, hf.pgm, color.ppm) | any raster GDAL reads")
+        ->required();
+    cmd.add_option("--color", args.load.color_path,
+                   "color raster for a GDAL DEM (orthophoto, Landsat bands 3,2,1, ...), resampled onto the DEM grid");
+    cmd.add_option("--demo-size", args.load.demo_size, "samples per side of the demo island (2^n+1, 33..16385)")
+        ->capture_default_str();
+}
+
+DataSet load_terrain(const TerrainArgs& args) { return overflight::load_terrain(args.terrain, args.load); }
+
+} // namespace overflight::app

@@ -1,0 +1,28 @@
+#pragma once
+// The terrain argument shared by every subcommand that takes one (info,
+// render, fly, tile, bench, sim; DESIGN sec. 6): the positional TERRAIN
+// ("demo", a hovercraft data set directory or a GDAL raster), `--color FILE`
+// and `--demo-size N`.
+#include "core/DataSet.h"
+#include "io/LoadTerrain.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace overflight::app {
+
+struct TerrainArgs {
+    std::string terrain;     // the positional argument
+    LoadOptions load;        // --color, --demo-size
+};
+
+// Adds TERRAIN (required positional), --color FILE and --demo-size N to `cmd`;
+// the values land in `args` when the command line is parsed, so `args` must
+// outlive the parse (keep it in a static or a shared_ptr owned by the callback).
+void add_terrain_options(CLI::App& cmd, TerrainArgs& args);
+
+// load_terrain(args.terrain, args.load); throws overflight::Error.
+DataSet load_terrain(const TerrainArgs& args);
+
+} // namespace overflight::app

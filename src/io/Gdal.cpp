@@ -1,0 +1,100 @@
+#include "io/Gdal.h"
+
+#include "core/Error.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <ogr_srs_api.h>
+
+#include <filesystem>
+#include <mutex>
+
+namespace overflight::gdal {
+
+namespace {
+
+// CSL string list owned for the duration of one GDAL utility call.
+struct StringList {
+    char** list = nullptr;
+    explicit StringList(const std::vector<std::string>& items) {
+        for (const std::string& s : items) list = CSLAddString(list, s.c_str());
+    }
+    ~StringList() { CSLDestroy(list); }
+    StringList(const StringList&) = delete;
+    StringList& operator=(const StringList&) = delete;
+};
+
+std::vector<std::string> with_mem_output(const std::vector<std::string>& options) {
+    std::vector<std::string> all{"-of", "MEM"};
+    all.insert(all.end(), options.begin(), options.end());
+    return all;
+}
+
+} // namespace
+
+void ensure_initialised() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        CPLSetErrorHandler(CPLQuietErrorHandler);
+        GDALAllRegister();
+    });
+}
+
+std::string last_error(const std::string& fallback) {
+    const char* msg = CPLGetLastErrorMsg();
+    if (!msg || !*msg) return fallback;
+    std::string s(msg);
+    // One line per error: GDAL messages sometimes span several.
+    for (char& c : s)
+        if (c == '\n' || c == '\r') c = ' ';
+    return s;
+}
+
+Dataset open_raster(const std::string& path) {
+    ensure_initialised();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(path, "no such file");
+    CPLErrorReset();
+    Dataset ds(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+    if (!ds) throw Error(path, "not a raster GDAL can read (" + last_error("unrecognised format") + ")");
+    if (GDALGetRasterCount(ds.get()) < 1) throw Error(path, "has no raster band");
+    return ds;
+}
+
+Dataset create_mem(int cols, int rows, int bands, GDALDataType type, const double* geotransform, const std::string& wkt) {
+    ensure_initialised();
+    GDALDriverH mem = GDALGetDriverByName("MEM");
+    Dataset ds(GDALCreate(mem, "", cols, rows, bands, type, nullptr));
+    if (!ds) throw Error("memory", "cannot allocate a " + std::to_string(cols) + "x" + std::to_string(rows) + " raster");
+    if (geotransform) GDALSetGeoTransform(ds.get(), const_cast<double*>(geotransform));
+    if (!wkt.empty()) GDALSetProjection(ds.get(), wkt.c_str());
+    return ds;
+}
+
+Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
+    StringList args(with_mem_output(options));
+    GDALTranslateOptions* opts = GDALTranslateOptionsNew(args.list, nullptr);
+    if (!opts) throw Error(subject, "bad translate options: " + last_error("?"));
+    CPLErrorReset();
+    int usage_error = 0;
+    Dataset out(GDALTranslate("", src, opts, &usage_error));
+    GDALTranslateOptionsFree(opts);
+    if (!out || usage_error) throw Error(subject, "cannot convert raster: " + last_error("GDALTranslate failed"));
+    return out;
+}
+
+Dataset warp(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
+    StringList args(with_mem_output(options));
+    GDALWarpAppOptions* opts = GDALWarpAppOptionsNew(args.list, nullptr);
+    if (!opts) throw Error(subject, "bad warp options: " + last_error("?"));
+    CPLErrorReset();
+    int usage_error = 0;
+    GDALDatasetH srcs[1] = {src};
+    Dataset out(GDALWarp("", nullptr, 1, srcs, opts, &usage_error));
+    GDALWarpAppOptionsFree(opts);
+    if (!out || usage_error) throw Error(subject, "cannot reproject raster: " + last_error("GDALWarp failed"));
+    return out;
+}
+
+} // namespace overflight::gdal

@@ -1,0 +1,38 @@
+#pragma once
+// Private to src/io: GDAL set-up and ownership. GDAL is used through its C
+// API; these wrappers give datasets RAII ownership, register the drivers once,
+// silence GDAL's own stderr messages (Overflight reports every failure as one
+// Error line instead) and turn the last GDAL error into that line.
+#include <gdal.h>
+#include <gdal_utils.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace overflight::gdal {
+
+// Registers all drivers and installs CPLQuietErrorHandler, once per process.
+void ensure_initialised();
+
+// The last message GDAL recorded on this thread, or `fallback` when it recorded none.
+std::string last_error(const std::string& fallback);
+
+struct DatasetCloser {
+    void operator()(GDALDatasetH ds) const { if (ds) GDALClose(ds); }
+};
+using Dataset = std::unique_ptr<void, DatasetCloser>;
+
+// Opens a raster read-only; Error(path, ...) when missing or not a raster GDAL reads.
+Dataset open_raster(const std::string& path);
+
+// A MEM dataset of rows x cols x bands of `type`, georeferenced when gt/wkt are given.
+Dataset create_mem(int cols, int rows, int bands, GDALDataType type, const double* geotransform = nullptr,
+                   const std::string& wkt = "");
+
+// GDALTranslate / GDALWarp to an in-memory dataset with gdal_translate /
+// gdalwarp command-line options (the "-of MEM" is added here). Error(subject, ...) on failure.
+Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject);
+Dataset warp(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject);
+
+} // namespace overflight::gdal

@@ -1,0 +1,442 @@
+// Based on: Zamri (seed 001), sec. 3 (USGS DEM ingestion); DESIGN sec. 4
+// (rasters through GDAL: metric reprojection at native resolution, no-data
+// filling, float/negative elevations mapped to 16 bits, color rasters warped
+// onto the DEM grid, elevation ramp with hill shading otherwise).
+#include "io/GdalRaster.h"
+
+#include "core/Error.h"
+#include "core/Shading.h"
+#include "io/Gdal.h"
+#include "io/HeightMapping.h"
+#include "io/UsgsDemHeader.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <gdal_alg.h>
+#include <ogr_srs_api.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace overflight {
+
+namespace {
+
+// Marks no-data inside our float buffers: far below any elevation on Earth,
+// exactly representable, and distinct from every source's own no-data value.
+constexpr float kNoData = -1.0e30f;
+
+struct SrsCloser {
+    void operator()(OGRSpatialReferenceH s) const { if (s) OSRDestroySpatialReference(s); }
+};
+using Srs = std::unique_ptr<void, SrsCloser>;
+
+std::string fmt(double v, int precision = 6) {
+    std::ostringstream o;
+    o.precision(precision);
+    o << v;
+    return o.str();
+}
+
+std::string lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+// Metres per vertical unit from GDAL's band unit type (free text in practice).
+double metres_per_unit(const std::string& unit, std::string& name) {
+    const std::string u = lower(unit);
+    if (u.empty() || u == "m" || u == "metre" || u == "meter" || u == "metres" || u == "meters") {
+        name = "metre";
+        return 1.0;
+    }
+    if (u == "us-ft" || u == "ftus" || u == "us survey foot" || u == "us_survey_foot" || u == "foot_us" ||
+        u == "us foot" || u == "survey foot") {
+        name = "US survey foot";
+        return 1200.0 / 3937.0;
+    }
+    if (u == "ft" || u == "foot" || u == "feet" || u == "international foot" || u == "intl foot") {
+        name = "foot";
+        return 0.3048;
+    }
+    if (u == "cm" || u == "centimetre" || u == "centimeter") {
+        name = "centimetre";
+        return 0.01;
+    }
+    name = unit + " (unknown, taken as metres)";
+    return 1.0;
+}
+
+std::string srs_name(OGRSpatialReferenceH srs) {
+    if (!srs) return {};
+    const char* name = OSRGetName(srs);
+    std::string s = name ? name : "unnamed";
+    if (s == "unnamed" || s.empty()) {
+        // USGS DEMs and VTP .bt files carry an unnamed CRS: name it by its parts.
+        const char* geog = OSRGetAttrValue(srs, "GEOGCS", 0);
+        int north = 0;
+        const int zone = OSRGetUTMZone(srs, &north);
+        const char* projection = OSRGetAttrValue(srs, "PROJECTION", 0);
+        s = geog ? geog : "unknown datum";
+        if (zone > 0)
+            s += " / UTM zone " + std::to_string(zone) + (north ? "N" : "S");
+        else if (projection)
+            s += std::string(" / ") + projection;
+    }
+    const char* auth = OSRGetAuthorityName(srs, nullptr);
+    const char* code = OSRGetAuthorityCode(srs, nullptr);
+    if (auth && code) s += " (" + std::string(auth) + ":" + code + ")";
+    return s;
+}
+
+std::string to_wkt(OGRSpatialReferenceH srs) {
+    char* wkt = nullptr;
+    OSRExportToWkt(srs, &wkt);
+    std::string s = wkt ? wkt : "";
+    CPLFree(wkt);
+    return s;
+}
+
+// The UTM zone of (lon, lat) on the datum of the geographic `src`: EPSG codes
+// for WGS 84, otherwise the datum is kept so no datum shift is introduced.
+Srs utm_for(OGRSpatialReferenceH src, double lon, double lat) {
+    const int zone = std::clamp(int(std::floor((lon + 180.0) / 6.0)) + 1, 1, 60);
+    const bool north = lat >= 0;
+    Srs utm(OSRNewSpatialReference(nullptr));
+    const char* code = OSRGetAuthorityCode(src, nullptr);
+    const char* auth = OSRGetAuthorityName(src, nullptr);
+    if (auth && code && std::string(auth) == "EPSG" && std::string(code) == "4326") {
+        OSRImportFromEPSG(utm.get(), (north ? 32600 : 32700) + zone);
+    } else {
+        OSRCopyGeogCSFrom(utm.get(), src);
+        OSRSetUTM(utm.get(), zone, north);
+        const char* geog = OSRGetAttrValue(src, "GEOGCS", 0);
+        const std::string name = std::string(geog ? geog : "unknown") + " / UTM zone " + std::to_string(zone) +
+                                 (north ? "N" : "S");
+        OSRSetProjCS(utm.get(), name.c_str());
+    }
+    OSRSetAxisMappingStrategy(utm.get(), OAMS_TRADITIONAL_GIS_ORDER);
+    return utm;
+}
+
+struct Grid {
+    int rows = 0, cols = 0;
+    std::vector<float> z;     // elevations in metres, kNoData where missing
+    double gt[6] = {0, 1, 0, 0, 0, 1};
+    bool georeferenced = false; // gt is a real geotransform
+    std::string wkt;            // CRS, empty if none
+};
+
+void read_band(GDALRasterBandH band, int cols, int rows, std::vector<float>& out, const std::string& subject) {
+    out.resize(std::size_t(rows) * std::size_t(cols));
+    CPLErrorReset();
+    if (GDALRasterIO(band, GF_Read, 0, 0, cols, rows, out.data(), cols, rows, GDT_Float32, 0, 0) != CE_None)
+        throw Error(subject, "unreadable raster: " + gdal::last_error("read failed"));
+}
+
+gdal::Dataset grid_dataset(const Grid& g) {
+    gdal::Dataset ds = gdal::create_mem(g.cols, g.rows, 1, GDT_Float32, g.georeferenced ? g.gt : nullptr, g.wkt);
+    GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+    GDALSetRasterNoDataValue(band, kNoData);
+    if (GDALRasterIO(band, GF_Write, 0, 0, g.cols, g.rows, const_cast<float*>(g.z.data()), g.cols, g.rows, GDT_Float32,
+                     0, 0) != CE_None)
+        throw Error("memory", "cannot write a temporary raster");
+    return ds;
+}
+
+Grid grid_of(GDALDatasetH ds, const std::string& subject) {
+    Grid g;
+    g.cols = GDALGetRasterXSize(ds);
+    g.rows = GDALGetRasterYSize(ds);
+    g.georeferenced = GDALGetGeoTransform(ds, g.gt) == CE_None;
+    const char* wkt = GDALGetProjectionRef(ds);
+    g.wkt = wkt ? wkt : "";
+    read_band(GDALGetRasterBand(ds, 1), g.cols, g.rows, g.z, subject);
+    return g;
+}
+
+// Fills kNoData samples by inverse-distance interpolation from valid
+// neighbours (GDALFillNodata, the algorithm of gdal_fillnodata), searching as
+// far as needed: voids of any size are filled, never left as spikes.
+void fill_nodata(Grid& g, const std::string& subject) {
+    // Its cost grows with the search distance, so first a short search (enough
+    // for SRTM voids and the wedges a UTM reprojection leaves at the corners of
+    // a 1-degree tile), and a search over the whole grid only if that left any.
+    const int whole = std::max(g.rows, g.cols);
+    for (const int distance : {std::min(256, whole), whole}) {
+        gdal::Dataset ds = grid_dataset(g);
+        GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+        CPLErrorReset();
+        if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
+            throw Error(subject, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
+        read_band(band, g.cols, g.rows, g.z, subject);
+        if (std::find(g.z.begin(), g.z.end(), kNoData) == g.z.end() || distance == whole) break;
+    }
+}
+
+struct ColorResult {
+    ColorImage image;
+    std::string description;
+};
+
+// Resamples the color raster onto the DEM grid (DESIGN sec. 4: `--color FILE`).
+ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
+    gdal::Dataset src = gdal::open_raster(color_path);
+    const int bands = GDALGetRasterCount(src.get());
+    std::vector<int> pick;
+    int r = 0, g = 0, b = 0;
+    for (int k = 1; k <= bands; ++k) {
+        const GDALColorInterp ci = GDALGetRasterColorInterpretation(GDALGetRasterBand(src.get(), k));
+        if (ci == GCI_RedBand && !r) r = k;
+        if (ci == GCI_GreenBand && !g) g = k;
+        if (ci == GCI_BlueBand && !b) b = k;
+    }
+    std::string bands_used;
+    std::vector<std::string> opts;
+    GDALRasterBandH first = GDALGetRasterBand(src.get(), 1);
+    const bool palette = bands == 1 && GDALGetRasterColorTable(first) != nullptr;
+    if (r && g && b) {
+        pick = {r, g, b};
+        bands_used = "RGB bands";
+    } else if (bands >= 6) {
+        pick = {3, 2, 1}; // Landsat TM/ETM+: bands 3, 2, 1 are red, green, blue
+        bands_used = "bands 3,2,1";
+    } else if (bands >= 3) {
+        pick = {1, 2, 3};
+        bands_used = "bands 1,2,3";
+    } else if (palette) {
+        pick = {1};
+        opts = {"-expand", "rgb"};
+        bands_used = "palette";
+    } else {
+        pick = {1};
+        bands_used = "band 1 as grey";
+    }
+    for (int k : pick) {
+        opts.push_back("-b");
+        opts.push_back(std::to_string(k));
+    }
+    bool rescaled = false;
+    if (GDALGetRasterDataType(GDALGetRasterBand(src.get(), pick[0])) != GDT_Byte) {
+        // Each band stretched from its own min..max: a 16-bit orthophoto or a
+        // reflectance raster would otherwise be black or clipped.
+        opts.insert(opts.end(), {"-ot", "Byte", "-scale"});
+        rescaled = true;
+    }
+    double cgt[6];
+    const bool color_geo = GDALGetGeoTransform(src.get(), cgt) == CE_None && GDALGetSpatialRef(src.get()) != nullptr;
+    const bool warp = color_geo && dem.georeferenced && !dem.wkt.empty();
+    if (!warp) {
+        opts.insert(opts.end(), {"-outsize", std::to_string(dem.cols), std::to_string(dem.rows), "-r", "bilinear"});
+    }
+    gdal::Dataset picked = gdal::translate(src.get(), opts, color_path);
+    std::string how = "stretched to the DEM grid (bilinear; no common georeferencing)";
+    if (warp) {
+        // The DEM's samples are its pixel centres, so the color grid is the DEM's pixel grid.
+        const double xmin = dem.gt[0], xmax = dem.gt[0] + dem.gt[1] * dem.cols;
+        const double ymax = dem.gt[3], ymin = dem.gt[3] + dem.gt[5] * dem.rows;
+        const double color_px = std::abs(cgt[1]);
+        const bool finer = color_px < std::abs(dem.gt[1]);
+        // Averaging when the color raster is finer avoids aliasing (a 28.5 m
+        // Landsat pixel onto a 90 m DEM cell); bilinear when it is coarser.
+        const char* method = finer ? "average" : "bilinear";
+        picked = gdal::warp(picked.get(),
+                            {"-t_srs", dem.wkt, "-te", fmt(xmin, 17), fmt(std::min(ymin, ymax), 17), fmt(xmax, 17),
+                             fmt(std::max(ymin, ymax), 17), "-ts", std::to_string(dem.cols), std::to_string(dem.rows),
+                             "-r", method},
+                            color_path);
+        how = std::string("warped onto the DEM grid (") + method + ")";
+    }
+    const int out_bands = GDALGetRasterCount(picked.get());
+    std::vector<std::uint8_t> channel(std::size_t(dem.rows) * std::size_t(dem.cols));
+    ColorResult result;
+    result.image.resize(dem.cols, dem.rows);
+    bool any = false;
+    for (int c = 0; c < 3; ++c) {
+        GDALRasterBandH band = GDALGetRasterBand(picked.get(), std::min(c + 1, out_bands));
+        CPLErrorReset();
+        if (GDALRasterIO(band, GF_Read, 0, 0, dem.cols, dem.rows, channel.data(), dem.cols, dem.rows, GDT_Byte, 0, 0) !=
+            CE_None)
+            throw Error(color_path, "unreadable raster: " + gdal::last_error("read failed"));
+        for (std::size_t i = 0; i < channel.size(); ++i) {
+            (&result.image.pixels[i].r)[c] = channel[i];
+            any = any || channel[i] != 0;
+        }
+    }
+    if (!any) throw Error(color_path, "color raster is entirely black on the terrain (does it overlap the DEM?)");
+    result.description = color_path + " (" + bands_used + (rescaled ? ", rescaled to 8 bits" : "") + ", " + how + ")";
+    return result;
+}
+
+std::vector<std::pair<std::string, std::string>> metadata_of(GDALDatasetH ds, const std::string& path,
+                                                             const std::string& driver) {
+    std::vector<std::pair<std::string, std::string>> out;
+    auto add_list = [&](char** list, const std::string& prefix) {
+        for (char** p = list; p && *p; ++p) {
+            char* key = nullptr;
+            const char* value = CPLParseNameValue(*p, &key);
+            if (key) out.emplace_back(prefix + key, value ? value : "");
+            CPLFree(key);
+        }
+    };
+    add_list(GDALGetMetadata(ds, nullptr), "");
+    add_list(GDALGetMetadata(GDALGetRasterBand(ds, 1), nullptr), "BAND1_");
+    if (driver == "USGSDEM") {
+        // Record A is the first 1024-byte record (seed 001, sec. 3).
+        std::string head(1024, ' ');
+        if (FILE* f = std::fopen(path.c_str(), "rb")) {
+            head.resize(std::fread(head.data(), 1, head.size(), f));
+            std::fclose(f);
+        }
+        for (auto& kv : usgs_record_a(head)) out.push_back(std::move(kv));
+    }
+    return out;
+}
+
+} // namespace
+
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path) {
+    gdal::Dataset src = gdal::open_raster(path);
+    DataSet data;
+    TerrainInfo& info = data.info;
+    info.source = path;
+    info.kind = "gdal";
+    GDALDriverH driver = GDALGetDatasetDriver(src.get());
+    info.driver = driver ? GDALGetDriverShortName(driver) : "?";
+    Grid grid = grid_of(src.get(), path);
+    info.source_rows = grid.rows;
+    info.source_cols = grid.cols;
+    if (grid.rows < 2 || grid.cols < 2)
+        throw Error(path, "raster is " + std::to_string(grid.cols) + "x" + std::to_string(grid.rows) +
+                              ", a terrain needs at least 2x2 samples");
+    if (grid.rows > 65537 || grid.cols > 65537)
+        throw Error(path, "raster is larger than 65537 samples per side");
+
+    // Elevations to metres (band scale/offset, then the unit type).
+    GDALRasterBandH band = GDALGetRasterBand(src.get(), 1);
+    int has_nodata = 0;
+    const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+    int has_scale = 0, has_offset = 0;
+    double scale = GDALGetRasterScale(band, &has_scale), offset = GDALGetRasterOffset(band, &has_offset);
+    if (!has_scale || scale == 0) scale = 1;
+    if (!has_offset) offset = 0;
+    const char* unit = GDALGetRasterUnitType(band);
+    info.unit_to_metre = metres_per_unit(unit ? unit : "", info.vertical_units);
+    long long voids = 0;
+    bool integral = true; // whole metres in the source: kept exact (v_scale = 1) when not resampled
+    for (float& v : grid.z) {
+        const bool missing = !std::isfinite(v) || (has_nodata && (double(v) == nodata || float(nodata) == v));
+        if (missing) {
+            v = kNoData;
+            ++voids;
+        } else {
+            v = float((double(v) * scale + offset) * info.unit_to_metre);
+            integral = integral && v == std::round(v);
+        }
+    }
+    if (voids == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
+    info.metadata = metadata_of(src.get(), path, info.driver);
+
+    // Georeferencing: decide whether the grid must be warped to square metric cells.
+    const bool real_gt = grid.georeferenced &&
+                         !(grid.gt[0] == 0 && grid.gt[1] == 1 && grid.gt[2] == 0 && grid.gt[3] == 0 &&
+                           grid.gt[4] == 0 && grid.gt[5] == 1);
+    grid.georeferenced = real_gt;
+    OGRSpatialReferenceH srs = GDALGetSpatialRef(src.get());
+    if (!real_gt) srs = nullptr; // a CRS without a geotransform places nothing
+    info.source_crs = srs_name(srs);
+    info.crs = info.source_crs;
+    double hs = 1.0;
+    std::vector<std::string> warp_opts;
+    if (srs && OSRIsGeographic(srs)) {
+        const double lon = grid.gt[0] + grid.gt[1] * grid.cols * 0.5 + grid.gt[2] * grid.rows * 0.5;
+        const double lat = grid.gt[3] + grid.gt[4] * grid.cols * 0.5 + grid.gt[5] * grid.rows * 0.5;
+        Srs utm = utm_for(srs, lon, lat);
+        // No -tr: gdalwarp's suggested output keeps the source's sample count
+        // along the diagonal with square cells, i.e. its native resolution.
+        warp_opts = {"-t_srs", to_wkt(utm.get())};
+        info.crs = srs_name(utm.get());
+    } else if (real_gt) {
+        const double px = std::hypot(grid.gt[1], grid.gt[4]), py = std::hypot(grid.gt[2], grid.gt[5]);
+        const bool rotated = grid.gt[2] != 0 || grid.gt[4] != 0;
+        if (rotated || std::abs(px - py) > 1e-6 * std::max(px, py)) {
+            const double res = std::min(px, py); // the finer spacing: no detail is lost
+            warp_opts = {"-tr", fmt(res, 17), fmt(res, 17)};
+        }
+        hs = px;
+    }
+    if (!warp_opts.empty()) {
+        warp_opts.insert(warp_opts.end(), {"-r", "bilinear", "-srcnodata", fmt(kNoData, 9), "-dstnodata",
+                                           fmt(kNoData, 9), "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA"});
+        gdal::Dataset source = grid_dataset(grid);
+        gdal::Dataset warped = gdal::warp(source.get(), warp_opts, path);
+        grid = grid_of(warped.get(), path);
+        grid.georeferenced = true;
+        hs = std::abs(grid.gt[1]);
+        info.reprojected = true;
+        info.reprojection = (info.source_crs.empty() ? std::string("no CRS") : info.source_crs) + " -> " + info.crs +
+                            ", bilinear, square cells of " + fmt(hs, 6) + " (was " + std::to_string(info.source_cols) +
+                            "x" + std::to_string(info.source_rows) + " cells)";
+    }
+    if (srs) {
+        // Projected CRSs in feet: world units are metres (DESIGN sec. 4).
+        OGRSpatialReferenceH target = srs;
+        Srs parsed;
+        if (info.reprojected) {
+            parsed.reset(OSRNewSpatialReference(grid.wkt.c_str()));
+            target = parsed.get();
+        }
+        if (target && OSRIsProjected(target)) hs *= OSRGetLinearUnits(target, nullptr);
+    }
+    if (!(hs > 0) || !std::isfinite(hs)) throw Error(path, "pixel size is not a positive number");
+
+    long long missing = 0;
+    for (float v : grid.z) missing += v == kNoData;
+    if (missing == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
+    if (missing > 0) {
+        fill_nodata(grid, path);
+        // Whatever the search could not reach keeps the lowest valid elevation, never a spike.
+        float lowest = std::numeric_limits<float>::max();
+        for (float v : grid.z)
+            if (v != kNoData) lowest = std::min(lowest, v);
+        for (float& v : grid.z)
+            if (v == kNoData) v = lowest;
+    }
+    // Interpolated voids of an integer DEM are rounded to whole metres, so the
+    // DEM keeps its exact 1 m mapping; resampled grids are no longer integral.
+    integral = integral && !info.reprojected;
+    if (integral && missing > 0)
+        for (float& v : grid.z) v = std::round(v);
+    info.nodata_filled = missing;
+    if (missing > 0) {
+        info.nodata_method = "inverse-distance interpolation from valid neighbours (GDALFillNodata); " +
+                             std::to_string(voids) + " no-data samples in the source";
+        if (info.reprojected) info.nodata_method += ", the rest outside the source after reprojection";
+    }
+
+    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+    for (float v : grid.z) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+    const HeightMapping mapping = choose_height_mapping(lo, hi, integral);
+    data.terrain = Terrain(grid.rows, grid.cols, float(hs), mapping.v_scale, mapping.y_offset);
+    quantise_heights(grid.z, mapping, data.terrain.heights());
+
+    if (!color_path.empty()) {
+        ColorResult color = color_on_grid(color_path, grid);
+        data.terrain.colors() = std::move(color.image.pixels);
+        info.color_source = color.description;
+    } else {
+        shade_by_elevation(data.terrain, 0.0f);
+        info.color_source = "elevation ramp + hillshade";
+    }
+    return data;
+}
+
+} // namespace overflight

@@ -1,0 +1,35 @@
+#pragma once
+// Any raster GDAL reads as a terrain (DESIGN sec. 4): USGS ASCII DEM,
+// GeoTIFF, SRTM .hgt, VTP .bt, ESRI ASCII grid, PNG height maps, ...
+//
+// Based on: Zamri (seed 001), sec. 3 (USGS DEM ingestion: Record A header,
+// elevation profiles); DESIGN sec. 4 (reprojection, no-data, 16-bit mapping).
+#include "core/DataSet.h"
+
+#include <string>
+
+namespace overflight {
+
+// Loads band 1 of `path` as a terrain:
+//  - elevations are converted to metres from the band's unit type (ft, US
+//    survey foot) after its scale/offset;
+//  - a geographic CRS (degrees) is warped to the UTM zone of the raster's centre
+//    (same datum), bilinear, with square cells at GDAL's suggested native
+//    resolution; a projected raster with non-square or rotated cells is warped
+//    within its CRS to square cells of its finer pixel size;
+//  - no-data samples (the band's no-data value, NaN, and cells outside the source
+//    after reprojection) are filled from valid neighbours by GDALFillNodata;
+//  - elevations map to 16 bits by choose_height_mapping (HeightMapping.h);
+//  - hs is the pixel size in metres; a raster without a geotransform has hs = 1;
+//  - with `color_path` non-empty, that raster is resampled onto the DEM grid
+//    (warped by georeferencing when both have one, else stretched to the grid):
+//    RGB bands by color interpretation, else bands 3,2,1 of a 6+ band
+//    (Landsat-like) image, else bands 1,2,3, a single band as grey; non-Byte
+//    bands are rescaled from their min..max to 0..255. Without it,
+//    shade_by_elevation with the sea at 0 m.
+// info records all of this. Throws Error(path or color_path, problem) for a
+// missing, unreadable or garbage file, a raster smaller than 2x2, or one that is
+// entirely no-data.
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path = "");
+
+} // namespace overflight

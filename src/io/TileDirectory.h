@@ -1,0 +1,106 @@
+#pragma once
+// Tile directories (DESIGN sec. 4, 6; issue 6): `overflight tile` cuts a
+// terrain into overlapping (2^k+1)^2 tiles and writes one GeoTIFF per tile
+// plus DIR/index.json; renderers load tiles lazily through a TileLoader.
+//
+// Based on: Zamri, seed 001, "Data tiling": the terrain is padded to a
+// (2^n+1)^2 square, cut into tiles of 2^k+1 samples per side that share their
+// edge samples, tiles without source data are flagged 0 and not stored, and
+// each tile goes to its own file for fast retrieval.
+//
+// Layout of DIR:
+//   index.json           format "overflight-tiles", version 1, tile_size,
+//                        tile_rows/tile_cols, exists (rows of 0/1 flags),
+//                        min_height/max_height per tile (world metres, for
+//                        culling before loading), source rows/cols and
+//                        padded size, h_scale, height mapping (v_scale,
+//                        y_offset: metres = v_scale * raw + y_offset), crs
+//                        (WKT, may be empty), geotransform (of the padded
+//                        grid's sample 0,0 corner), source checksum
+//                        (FNV-1a 64 of the source samples, colors and
+//                        mapping), complete (false while tiling runs).
+//   r{R}_c{C}.tif        heights: 1 band UInt16, tile_size^2, DEFLATE,
+//                        SetScale(v_scale)/SetOffset(y_offset) so GIS tools
+//                        read metres, the source CRS and a geotransform on the
+//                        source grid (tile origin = source origin + (C*(s-1),
+//                        R*(s-1)) pixels).
+//   r{R}_c{C}_rgb.tif    colors: 3 bands Byte (red, green, blue), same grid.
+//                        A separate file because GeoTIFF bands share one data
+//                        type: RGB as UInt16 bands would double its size.
+// Every file is written to a temporary name and renamed; the heights file is
+// renamed last, so it marks a finished tile. A re-run with the same source and
+// tile size skips finished tiles; index.json is rewritten with
+// complete = true at the end, and readers refuse an incomplete directory.
+#include "core/DataSet.h"
+#include "lod/TileSet.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace overflight {
+
+struct TileIndex {
+    TileGrid grid;
+    int source_rows = 0, source_cols = 0;
+    int padded_size = 0;
+    std::string crs_wkt;
+    bool georeferenced = false;
+    std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
+    std::string checksum;
+    bool complete = false;
+    std::string source; // what was tiled (path or "demo")
+};
+
+struct TileWriteOptions {
+    int tile_size = 257;
+    bool terminal_progress = false; // GDALTermProgress on stderr
+    // Georeferencing of the terrain grid (sample 0,0 corner, GDAL convention);
+    // without it, a local metric frame: X = world X, Y = -world Z.
+    bool georeferenced = false;
+    std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
+    std::string crs_wkt;
+    // Called after each tile with (tiles done, tiles total); returning false
+    // stops the run as an interruption would (throws Error(dir, "interrupted")).
+    std::function<bool(int, int)> on_tile;
+};
+
+struct TileWriteReport {
+    int written = 0, skipped = 0, empty = 0; // empty: flagged 0, not written
+    TileIndex index;
+};
+
+// FNV-1a 64 of the terrain's size, scales, samples and colors, as 16 hex digits.
+std::string terrain_checksum(const Terrain& terrain);
+
+// Tiles `data.terrain` into `dir` (created if missing). Throws
+// Error("--tile-size", ...) for a size that is not 2^k+1 >= 3, Error(dir or a
+// tile path, ...) for I/O failures.
+TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir, const TileWriteOptions& options);
+
+// True when `path` is a directory holding index.json.
+bool is_tile_directory(const std::string& path);
+
+// Reads DIR/index.json. Throws Error(DIR/index.json, ...) when missing,
+// malformed, inconsistent or incomplete.
+TileIndex read_tile_index(const std::string& dir);
+
+// Reads tile (r, c) (heights in raw units with the index's mapping, colors).
+// Throws Error(tile path, ...) when missing or of the wrong size.
+TileSamples read_tile(const std::string& dir, const TileIndex& index, int r, int c);
+
+// A loader for TileSet that reads tiles from `dir`.
+TileLoader tile_directory_loader(const std::string& dir, const TileIndex& index);
+
+// The whole source terrain reassembled from the tiles (cropped to the source
+// size), for `info` and the non-tiled renderers; info.kind = "tiles".
+DataSet load_tile_directory(const std::string& dir);
+
+// Georeferencing of a GDAL raster (geotransform and CRS WKT), or false when
+// it is not a georeferenced raster. Used by `tile` to carry the source's
+// georeferencing when the terrain was loaded on the raster's own grid.
+bool read_georeferencing(const std::string& path, std::array<double, 6>& geotransform, std::string& crs_wkt,
+                         int& rows, int& cols);
+
+} // namespace overflight

@@ -1,0 +1,23 @@
+#pragma once
+// The Record A header of a USGS ASCII DEM: the "general information" Zamri
+// extracts before reading the elevation profiles (seed 001, sec. 3: ground
+// coordinates of the corners, minimum and maximum elevation, rows and
+// columns). GDAL's USGSDEM driver reads the profiles but exposes few of these
+// fields, so `overflight info` reads them here.
+//
+// Based on: Zamri (seed 001), sec. 3 (data extraction from Record A); USGS
+// National Mapping Program Technical Instructions, Standards for Digital
+// Elevation Models, Part 2 (1992), Record A data elements 1-18 (fixed columns).
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace overflight {
+
+// Named Record A fields of the first 1024-byte record of `text` (the start of a
+// USGS DEM file), e.g. {"USGS_TITLE", "MOUNT ST. HELENS..."}, {"USGS_ELEVATION_UNITS",
+// "metres"}, {"USGS_MIN_ELEVATION", "682"}. Fields that are blank or do not parse are
+// left out; text shorter than a record yields what fits. Never throws.
+std::vector<std::pair<std::string, std::string>> usgs_record_a(const std::string& text);
+
+} // namespace overflight
