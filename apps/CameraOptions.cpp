@@ -1,0 +1,302 @@
+// Camera options (DESIGN sec. 6) and the table of rendering methods shared by
+// `render` and `bench`. See CameraOptions.h.
+#include "CameraOptions.h"
+
+#include "core/Error.h"
+#include "raycast/FloatingHorizon.h"
+#include "raycast/FloatingHorizonLiteral.h"
+#include "raycast/RayMarcher.h"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace overflight::app {
+
+namespace {
+
+std::string num(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+// "a,b[,c]" -> values; throws Error(option, ...) unless exactly `count` finite numbers.
+std::vector<double> parse_list(const std::string& text, const std::string& option, int count, const char* form) {
+    std::vector<double> v;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        try {
+            std::size_t used = 0;
+            const double x = std::stod(item, &used);
+            if (used != item.size() || !std::isfinite(x)) throw std::invalid_argument(item);
+            v.push_back(x);
+        } catch (const std::exception&) {
+            throw Error(option, "'" + text + "' is not " + form);
+        }
+    }
+    if (int(v.size()) != count) throw Error(option, "'" + text + "' is not " + form);
+    return v;
+}
+
+double terrain_extent(const Terrain& t) { return std::max(t.width(), t.depth()); }
+
+} // namespace
+
+void add_camera_options(CLI::App& cmd, CameraArgs& a) {
+    auto* eye = cmd.add_option("--eye", a.eye, "eye position X,Y,Z (world units; X east, Y up, Z south)");
+    auto* at = cmd.add_option("--at", a.at, "eye above the terrain point X,Z (with --agl)");
+    eye->excludes(at);
+    cmd.add_option("--agl", a.agl, "eye height above ground at --at (world units)")->excludes(eye);
+    cmd.add_option("--heading", a.heading, "view heading in degrees (0 south, 90 east, 180 north, 270 west)");
+    cmd.add_option("--pitch", a.pitch, "pitch in degrees, positive looks up, |pitch| < 89");
+    cmd.add_option("--projection", a.projection,
+                   "shear: vertical view plane, pitch shifts the horizon (the papers' camera); tilt: the camera itself "
+                   "is pitched")
+        ->capture_default_str();
+    cmd.add_option("--fov", a.fov, "horizontal field of view in degrees, (0, 180); default 60");
+    cmd.add_option("--size", a.size, "image size WxH, 1..16384 each");
+    cmd.add_option("--near", a.near, "near plane distance along the view axis (default: 1)");
+    cmd.add_option("--far", a.far, "far plane distance along the view axis (default: the terrain's diagonal)");
+}
+
+void parse_size(const std::string& text, const std::string& option, int& width, int& height) {
+    const std::size_t x = text.find_first_of("xX");
+    auto parse_int = [&](const std::string& s) {
+        if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos)
+            throw Error(option, "'" + text + "' is not WxH (for example 1920x1080)");
+        return std::stoi(s);
+    };
+    if (x == std::string::npos) throw Error(option, "'" + text + "' is not WxH (for example 1920x1080)");
+    width = parse_int(text.substr(0, x));
+    height = parse_int(text.substr(x + 1));
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw Error(option, "image size " + text + " is outside 1..16384 pixels per side");
+}
+
+Camera default_camera(const DataSet& data, int width, int height) {
+    const Terrain& t = data.terrain;
+    const double extent = terrain_extent(t);
+    const double relief = std::max(double(t.max_height() - t.min_height()), 10.0 * t.h_scale());
+    Camera cam;
+    cam.width = width;
+    cam.height = height;
+    cam.fov = 60;
+    cam.pitch = -12;
+    cam.near = 1.0;
+    cam.far = std::hypot(t.width(), t.depth()) * 1.05;
+    if (data.start.given && t.contains(float(data.start.x), float(data.start.z))) {
+        // A chase view: behind the vehicle along its heading, above the ground.
+        cam.heading = data.start.heading;
+        const glm::dvec3 F = cam.forward();
+        const double back = 30.0 * t.h_scale();
+        const double x = std::clamp(data.start.x - back * F.x, 0.0, double(t.width()));
+        const double z = std::clamp(data.start.z - back * F.z, 0.0, double(t.depth()));
+        const double ground = std::max(t.height_bilinear(float(x), float(z)), t.height_bilinear(float(data.start.x), float(data.start.z)));
+        // High enough to look over the relief ahead (an island's start is on its coast).
+        cam.eye = {x, std::max(ground + 15.0 * t.h_scale(), double(t.min_height()) + 0.8 * relief), z};
+    } else {
+        // Above the south edge, looking north across the terrain.
+        cam.heading = 180;
+        cam.eye = {t.width() * 0.5, t.max_height() + 0.25 * relief, t.depth() + 0.02 * extent};
+    }
+    return cam;
+}
+
+Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, int default_height) {
+    const Terrain& t = data.terrain;
+    int width = default_width, height = default_height;
+    if (!a.size.empty()) parse_size(a.size, "--size", width, height);
+    Camera cam = default_camera(data, width, height);
+    if (a.projection == "shear") cam.projection = Projection::Shear;
+    else if (a.projection == "tilt") cam.projection = Projection::Tilt;
+    else throw Error("--projection", "'" + a.projection + "' is not shear or tilt");
+
+    const double extent = terrain_extent(t);
+    bool user_eye = false;
+    if (!a.eye.empty()) {
+        const auto v = parse_list(a.eye, "--eye", 3, "X,Y,Z (three numbers)");
+        cam.eye = {v[0], v[1], v[2]};
+        user_eye = true;
+    } else if (!a.at.empty() || a.agl) {
+        double x = cam.eye.x, z = cam.eye.z;
+        if (!a.at.empty()) {
+            const auto v = parse_list(a.at, "--at", 2, "X,Z (two numbers)");
+            x = v[0];
+            z = v[1];
+            if (!t.contains(float(x), float(z)))
+                throw Error("--at", "point " + num(x) + "," + num(z) + " is outside the terrain (X 0.." + num(t.width()) +
+                                        ", Z 0.." + num(t.depth()) + ")");
+            user_eye = true;
+        }
+        const double agl = a.agl.value_or(std::max(15.0 * t.h_scale(), 0.05 * double(t.max_height() - t.min_height())));
+        if (!std::isfinite(agl) || agl < 0 || agl > 100.0 * extent)
+            throw Error("--agl", num(agl) + " is not a height above ground in 0.." + num(100.0 * extent));
+        cam.eye = {x, t.height_bilinear(float(std::clamp(x, 0.0, double(t.width()))),
+                                        float(std::clamp(z, 0.0, double(t.depth())))) + agl, z};
+    }
+    // A sane eye: within 10 terrain extents of the map horizontally, and no
+    // more than 100 extents above it or one extent below its lowest point.
+    const double margin = 10.0 * extent;
+    if (cam.eye.x < -margin || cam.eye.x > t.width() + margin || cam.eye.z < -margin || cam.eye.z > t.depth() + margin ||
+        cam.eye.y < t.min_height() - extent || cam.eye.y > t.max_height() + 100.0 * extent)
+        throw Error("--eye", "eye " + num(cam.eye.x) + "," + num(cam.eye.y) + "," + num(cam.eye.z) +
+                                 " is too far from the terrain (X 0.." + num(t.width()) + ", Z 0.." + num(t.depth()) + ")");
+    if (a.heading) {
+        if (!std::isfinite(*a.heading)) throw Error("--heading", "is not a number");
+        cam.heading = *a.heading;
+    } else if (user_eye) {
+        const double dx = t.width() * 0.5 - cam.eye.x, dz = t.depth() * 0.5 - cam.eye.z;
+        if (std::hypot(dx, dz) > 1e-6) cam.heading = glm::degrees(std::atan2(dx, dz));
+    }
+    if (a.pitch) {
+        if (!(std::abs(*a.pitch) < 89.0)) throw Error("--pitch", num(*a.pitch) + " is outside (-89, 89) degrees");
+        cam.pitch = *a.pitch;
+    }
+    if (a.fov) {
+        if (!(*a.fov > 0.0 && *a.fov < 180.0)) throw Error("--fov", num(*a.fov) + " is outside (0, 180) degrees");
+        cam.fov = *a.fov;
+    }
+    if (a.near) {
+        if (!(*a.near > 0.0) || !std::isfinite(*a.near)) throw Error("--near", num(*a.near) + " must be a positive distance");
+        cam.near = *a.near;
+    }
+    if (a.far) {
+        if (!std::isfinite(*a.far) || !(*a.far > cam.near))
+            throw Error("--far", num(*a.far) + " must be greater than --near (" + num(cam.near) + ")");
+        cam.far = *a.far;
+    } else if (!(cam.far > cam.near)) {
+        throw Error("--near", num(cam.near) + " must be less than --far (" + num(cam.far) + ")");
+    }
+    // Slices are one cell apart: a far plane of more than 2^24 cells is a typo.
+    if (cam.far / t.h_scale() > 16777216.0)
+        throw Error("--far", num(cam.far) + " is more than 2^24 cells (" + num(t.h_scale()) + " each) away");
+    cam.validate();
+    return cam;
+}
+
+RaycastOptions RenderSettings::raycast() const {
+    RaycastOptions o;
+    o.surface = parse_surface_model(surface, "--surface");
+    o.tilt = parse_tilt_method(tilt_method, "--tilt-method");
+    o.lod = lod;
+    if (!(near_step >= 0.0 && near_step <= 1000.0)) throw Error("--near-step", "must be in 0..1000 pixels");
+    o.near_step_pixels = near_step;
+    return o;
+}
+
+void add_render_settings(CLI::App& cmd, RenderSettings& s) {
+    cmd.add_option("--surface", s.surface,
+                   "voxel surface model: blocks (each sample a flat-topped column, the papers' voxels) or bilinear")
+        ->capture_default_str();
+    cmd.add_flag("--lod", s.lod,
+                 "voxel distance LOD: past the distance where a pixel spans half a cell, step 2^L cells through "
+                 "max-height/mean-color pyramids (faster, slightly taller distant silhouettes)");
+    cmd.add_option("--tilt-method", s.tilt_method,
+                   "voxel with --projection tilt: exact (vertical planes covering the tilted view, each pixel "
+                   "reprojected exactly, at most a quarter pixel sideways) or guedes (Guedes' per-row ray slopes and "
+                   "incremental d-buffer; approximate off the centre row)")
+        ->capture_default_str();
+    cmd.add_option("--near-step", s.near_step,
+                   "voxel: near the eye, where a cell spans more pixels, put slices closer than one cell so that a "
+                   "step spans at most this many pixels (down to 1/8 cell); 0 = one cell everywhere as in the paper")
+        ->capture_default_str();
+}
+
+namespace {
+
+nlohmann::json raycast_stats_json(const RaycastStats& s) {
+    nlohmann::json j;
+    j["ms"] = {{"setup", s.ms_setup}, {"cast", s.ms_cast}, {"resolve", s.ms_resolve}, {"total", s.ms_total}};
+    j["samples"] = s.samples;
+    j["samples_visited"] = s.samples_visited;
+    j["columns"] = s.columns;
+    j["slices"] = s.slices;
+    j["pixels_painted"] = s.pixels_painted;
+    if (s.fallback_pixels) j["fallback_pixels"] = s.fallback_pixels;
+    j["ns_per_sample"] = s.samples ? s.ms_total * 1e6 / double(s.samples) : 0.0;
+    return j;
+}
+
+class VoxelRenderer : public ViewRenderer {
+public:
+    VoxelRenderer(const DataSet& d, const RenderSettings& s) : fh_(d.terrain, d.environment), options_(s.raycast()) {}
+    void render(const Camera& camera, ColorImage& color, DepthImage& depth, nlohmann::json& stats) override {
+        RaycastStats s;
+        fh_.render(camera, options_, color, depth, &s);
+        stats = raycast_stats_json(s);
+        stats["surface"] = to_string(options_.surface);
+        stats["lod"] = options_.lod;
+        if (camera.projection == Projection::Tilt) stats["tilt_method"] = to_string(options_.tilt);
+    }
+
+private:
+    FloatingHorizon fh_;
+    RaycastOptions options_;
+};
+
+class LiteralRenderer : public ViewRenderer {
+public:
+    LiteralRenderer(const DataSet& d, const RenderSettings& s) : data_(d), options_(s.raycast()) {
+        if (options_.lod) throw Error("--lod", "voxel-literal has no LOD (it is Algorithm 1 as printed)");
+    }
+    void render(const Camera& camera, ColorImage& color, DepthImage& depth, nlohmann::json& stats) override {
+        RaycastStats s;
+        render_floating_horizon_literal(data_.terrain, data_.environment, camera, options_.surface, color, depth, &s);
+        stats = raycast_stats_json(s);
+        stats["surface"] = to_string(options_.surface);
+    }
+
+private:
+    const DataSet& data_;
+    RaycastOptions options_;
+};
+
+class RayMarchRenderer : public ViewRenderer {
+public:
+    RayMarchRenderer(const DataSet& d, const RenderSettings& s) : marcher_(d.terrain, d.environment), options_(s.raycast()) {}
+    void render(const Camera& camera, ColorImage& color, DepthImage& depth, nlohmann::json& stats) override {
+        const auto t0 = std::chrono::steady_clock::now();
+        marcher_.render(camera, options_.surface, color, depth);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        stats = {{"ms", {{"total", ms}}}, {"rays", (long long)camera.width * camera.height},
+                 {"surface", to_string(options_.surface)}};
+    }
+
+private:
+    RayMarcher marcher_;
+    RaycastOptions options_;
+};
+
+} // namespace
+
+const std::vector<RenderMethod>& render_methods() {
+    static const std::vector<RenderMethod> methods = {
+        {"voxel", "Floating Horizon ray caster (Szenberg 1997), parallel, exact", true,
+         [](const DataSet& d, const RenderSettings& s) { return std::make_unique<VoxelRenderer>(d, s); }},
+        {"voxel-literal", "Szenberg's Algorithm 1 as printed, single-threaded (reference, shear only)", true,
+         [](const DataSet& d, const RenderSettings& s) { return std::make_unique<LiteralRenderer>(d, s); }},
+        {"raymarch", "brute-force per-pixel ray marcher (reference)", false,
+         [](const DataSet& d, const RenderSettings& s) { return std::make_unique<RayMarchRenderer>(d, s); }},
+    };
+    return methods;
+}
+
+std::string render_method_names() {
+    std::string names;
+    for (const auto& m : render_methods()) names += (names.empty() ? "" : "|") + m.name;
+    return names;
+}
+
+const RenderMethod& find_render_method(const std::string& name, const std::string& option) {
+    for (const auto& m : render_methods())
+        if (m.name == name) return m;
+    throw Error(option, "unknown method '" + name + "' (known: " + render_method_names() + ")");
+}
+
+} // namespace overflight::app

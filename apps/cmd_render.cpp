@@ -1,0 +1,70 @@
+// `overflight render TERRAIN -o out.png [--method M] [camera options] [--depth depth.tif] [--stats]`
+// (DESIGN sec. 6): one view of a terrain, written as PNG (+ float32 window
+// depth TIFF), with timings as one JSON object on stdout.
+#include "CameraOptions.h"
+#include "Commands.h"
+#include "TerrainOptions.h"
+#include "core/Error.h"
+#include "io/ImageWriters.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+namespace overflight::app {
+
+namespace {
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+} // namespace
+
+void add_render_command(CLI::App& app) {
+    struct Args {
+        TerrainArgs terrain;
+        CameraArgs camera;
+        RenderSettings settings;
+        std::string out, depth, method = "voxel";
+        bool stats = false;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand("render", "Render one view of a terrain to a PNG (and its depth to a TIFF)");
+    add_terrain_options(*cmd, args->terrain);
+    cmd->add_option("-o,--output", args->out, "output PNG")->required();
+    cmd->add_option("--method", args->method, "terrain renderer: " + render_method_names())->capture_default_str();
+    add_camera_options(*cmd, args->camera);
+    add_render_settings(*cmd, args->settings);
+    cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
+    cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
+    cmd->callback([args] {
+        const RenderMethod& method = find_render_method(args->method);
+        auto t0 = std::chrono::steady_clock::now();
+        const DataSet data = load_terrain(args->terrain);
+        const double ms_load = ms_since(t0);
+        const Camera camera = make_camera(args->camera, data, 1280, 720);
+        std::unique_ptr<ViewRenderer> renderer = method.create(data, args->settings);
+        ColorImage color;
+        DepthImage depth;
+        nlohmann::json stats;
+        t0 = std::chrono::steady_clock::now();
+        renderer->render(camera, color, depth, stats);
+        const double ms_render = ms_since(t0);
+        t0 = std::chrono::steady_clock::now();
+        write_png(args->out, color);
+        if (!args->depth.empty()) write_depth_tiff(args->depth, depth);
+        const double ms_write = ms_since(t0);
+        if (args->stats) {
+            stats["method"] = method.name;
+            stats["width"] = camera.width;
+            stats["height"] = camera.height;
+            stats["projection"] = to_string(camera.projection);
+            stats["ms"]["load"] = ms_load;
+            stats["ms"]["render"] = ms_render;
+            stats["ms"]["write"] = ms_write;
+            const std::string text = stats.dump() + "\n";
+            std::fwrite(text.data(), 1, text.size(), stdout);
+        }
+    });
+}
+
+} // namespace overflight::app

@@ -1,0 +1,109 @@
+// Floating Horizon speed (Szenberg 1997, Table 1's "Floating Horizon" step):
+// the fast caster against the literal Algorithm 1 in the same run, on the demo
+// island, at 1920x1080 with the far plane 2048 cells away (issue 3). Counters:
+// ns per ray sample (columns x slices up to far) and frames per second.
+//   bench_raycast_bench --benchmark_filter=. [--benchmark_min_time=1]
+// Environment OVERFLIGHT_BENCH_DEMO_SIZE (default 4097) sets the island size.
+#include "core/DemoIsland.h"
+#include "raycast/FloatingHorizon.h"
+#include "raycast/FloatingHorizonLiteral.h"
+
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <cstdlib>
+#include <memory>
+
+using namespace overflight;
+
+namespace {
+
+const DataSet& island() {
+    static const DataSet ds = [] {
+        const char* env = std::getenv("OVERFLIGHT_BENCH_DEMO_SIZE");
+        return make_demo_island({env ? std::atoi(env) : 4097});
+    }();
+    return ds;
+}
+
+// The default overview of `overflight bench`: behind the vehicle start, 12 degrees down.
+Camera bench_camera(const DataSet& ds, Projection proj) {
+    const Terrain& t = ds.terrain;
+    Camera cam;
+    cam.width = 1920;
+    cam.height = 1080;
+    cam.fov = 60;
+    cam.pitch = -12;
+    cam.projection = proj;
+    cam.heading = ds.start.heading;
+    const glm::dvec3 F = cam.forward();
+    const double x = ds.start.x - 30 * t.h_scale() * F.x, z = ds.start.z - 30 * t.h_scale() * F.z;
+    cam.eye = {x, t.height_bilinear(float(x), float(z)) + 0.05 * (t.max_height() - t.min_height()), z};
+    cam.near = 1;
+    cam.far = 2048 * t.h_scale();
+    return cam;
+}
+
+void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt) {
+    const DataSet& ds = island();
+    const int threads = int(state.range(0));
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    FloatingHorizon fh(ds.terrain, ds.environment);
+    const Camera cam = bench_camera(ds, proj);
+    ColorImage color;
+    DepthImage depth;
+    RaycastStats stats;
+    fh.render(cam, opt, color, depth, &stats); // warm-up
+    for (auto _ : state) fh.render(cam, opt, color, depth, &stats);
+    state.counters["ns_per_sample"] = benchmark::Counter(double(stats.samples) * 1e-9 * double(state.iterations()),
+                                                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["samples"] = double(stats.samples);
+    state.counters["visited"] = double(stats.samples_visited);
+    state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_Voxel(benchmark::State& s) { run_fast(s, Projection::Shear, {}); }
+void BM_VoxelBilinear(benchmark::State& s) {
+    RaycastOptions o;
+    o.surface = SurfaceModel::Bilinear;
+    run_fast(s, Projection::Shear, o);
+}
+void BM_VoxelLod(benchmark::State& s) {
+    RaycastOptions o;
+    o.lod = true;
+    run_fast(s, Projection::Shear, o);
+}
+void BM_VoxelNearStep(benchmark::State& s) {
+    RaycastOptions o;
+    o.near_step_pixels = 0.5;
+    run_fast(s, Projection::Shear, o);
+}
+void BM_VoxelTiltExact(benchmark::State& s) { run_fast(s, Projection::Tilt, {}); }
+void BM_VoxelTiltGuedes(benchmark::State& s) {
+    RaycastOptions o;
+    o.tilt = TiltMethod::Guedes;
+    run_fast(s, Projection::Tilt, o);
+}
+
+void BM_VoxelLiteral(benchmark::State& state) {
+    const DataSet& ds = island();
+    const Camera cam = bench_camera(ds, Projection::Shear);
+    ColorImage color;
+    DepthImage depth;
+    RaycastStats stats;
+    for (auto _ : state)
+        render_floating_horizon_literal(ds.terrain, ds.environment, cam, SurfaceModel::Blocks, color, depth, &stats);
+    state.counters["ns_per_sample"] = benchmark::Counter(double(stats.samples) * 1e-9 * double(state.iterations()),
+                                                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+} // namespace
+
+BENCHMARK(BM_Voxel)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelLod)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelNearStep)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelTiltExact)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelTiltGuedes)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelLiteral)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);

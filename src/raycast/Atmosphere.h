@@ -1,0 +1,76 @@
+#pragma once
+// Sky and fog shared by every terrain ray caster (fast, literal, reference),
+// so that voxel images match the mesh renderers pixel for pixel.
+//
+// Based on: the hovercraft project (seed 003), "GL_EXP fog and skybox", and
+// Szenberg 1997 sec. 5 (the ray-cast image is composited with GL primitives,
+// so fog must be computed the way a GL fragment shader computes it).
+//
+// Conventions (the GL layer uses the same ones):
+//   fog factor  f = exp(-density * distance), distance = eye-space distance
+//               |P - eye| of the surface point hit through the pixel centre
+//               (GLSL: length(eye_pos)), color = f * surface + (1 - f) * fog;
+//   sky         mix(sky_horizon, sky_zenith, clamp(sin(elevation), 0, 1)),
+//               elevation of the pixel-centre ray; no fog on the sky.
+#include "core/DataSet.h"
+#include "core/Image.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace overflight {
+
+// Packs a color as 0x00BBGGRR (the internal format of the ray casters' buffers).
+inline std::uint32_t pack_rgb(Rgb8 c) { return std::uint32_t(c.r) | (std::uint32_t(c.g) << 8) | (std::uint32_t(c.b) << 16); }
+inline Rgb8 unpack_rgb(std::uint32_t p) {
+    return Rgb8{std::uint8_t(p & 0xFF), std::uint8_t((p >> 8) & 0xFF), std::uint8_t((p >> 16) & 0xFF)};
+}
+// A [0,1] float color to 8 bits, rounded and clamped.
+Rgb8 to_rgb8(const glm::vec3& c);
+
+// Sky color for a ray direction (any length, must not be zero).
+Rgb8 sky_color(const Environment& env, const glm::dvec3& dir);
+// Sky color from the sine of the ray's elevation angle.
+Rgb8 sky_color_from_sine(const Environment& env, double sin_elevation);
+
+// GL_EXP fog factor for an eye distance: exp(-density * distance), 1 without fog.
+double fog_factor(const Environment& env, double distance);
+// Blends a surface color towards the fog color by factor f (1 = no fog), rounding to nearest.
+Rgb8 apply_fog(const Environment& env, Rgb8 surface, double f);
+
+// exp(-density * distance) tabulated over [0, max_distance] as 8.8 fixed-point
+// blend weights (0..256), nearest entry, rebuilt per frame without allocating
+// once sized: the fast ray caster needs one fog factor per painted pixel and
+// exp() there would cost more than the ray casting itself. With 4096 entries
+// the factor is off by at most density*max_distance/8192 + 1/512, under one
+// color level for density * max_distance <= 8.
+class FogTable {
+public:
+    void build(float density, float max_distance);
+    bool enabled() const { return enabled_; }
+    // Blend weight of the surface color, 0..256, for a distance >= 0 (past max_distance clamps).
+    std::uint32_t weight(float distance) const {
+        const float x = distance * inv_step_ + 0.5f;
+        return table_[std::size_t(x < float(kEntries) ? int(x) : kEntries)];
+    }
+
+    static constexpr int kEntries = 4096;
+
+private:
+    bool enabled_ = false;
+    float inv_step_ = 0.0f;
+    std::vector<std::uint16_t> table_;
+};
+
+// Per-channel blend towards the fog color with the surface weight a in 0..256.
+inline std::uint32_t fog_blend(std::uint32_t surface, std::uint32_t fog, std::uint32_t a) {
+    const std::uint32_t b = 256 - a;
+    // Red and blue share one multiply (SWAR): each product stays below 2^16.
+    const std::uint32_t rb = (((surface & 0xFF00FFu) * a + (fog & 0xFF00FFu) * b + 0x800080u) >> 8) & 0xFF00FFu;
+    const std::uint32_t g = (((surface & 0x00FF00u) * a + (fog & 0x00FF00u) * b + 0x008000u) >> 8) & 0x00FF00u;
+    return rb | g;
+}
+
+} // namespace overflight

@@ -1,0 +1,30 @@
+#pragma once
+// voxel-literal: Szenberg's Algorithm 1 transcribed as printed, single
+// threaded, one column at a time, kept beside the fast FloatingHorizon as its
+// reference and as the baseline of `overflight bench`.
+//
+// Based on: Szenberg, Gattass, Carvalho 1997, Algorithm 1 (CastRay), with the
+// sec. 6 changes that make it comparable with OpenGL: [a] d_pk is the same for
+// all columns (the focal length fp in pixels, since the screen is measured in
+// pixels here), [b] the step (dx, dy) of column k has norm h_scale/cos(theta_k)
+// (slices parallel to the screen, sec. 5.2), [c] every painted pixel stores
+// Depth[i] (line 11A) from the depth vector of Algorithm 2. The first slice is
+// at `near` and the last at `far`, as in sec. 5.1 [c]-[d]. Samples outside the
+// terrain are skipped (the paper's map has no edge in view). Per painted pixel,
+// fog and sky are computed exactly (std::exp, Atmosphere.h).
+//
+// Only the papers' camera is supported: projection `shear` (vertical view plane).
+#include "core/Camera.h"
+#include "core/DataSet.h"
+#include "core/Image.h"
+#include "core/Terrain.h"
+#include "raycast/RaycastOptions.h"
+
+namespace overflight {
+
+// Throws Error("--projection", ...) for a tilt camera, Error("camera", ...) for a bad one.
+void render_floating_horizon_literal(const Terrain& terrain, const Environment& env, const Camera& camera,
+                                     SurfaceModel surface, ColorImage& color, DepthImage& depth,
+                                     RaycastStats* stats = nullptr);
+
+} // namespace overflight

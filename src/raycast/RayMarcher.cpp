@@ -1,0 +1,151 @@
+// Based on: Szenberg 1997 sec. 4 (plain ray casting), OpenGL unprojection.
+// See RayMarcher.h. Deliberately simple and slow: it is the reference.
+#include "raycast/RayMarcher.h"
+
+#include "raycast/Atmosphere.h"
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace overflight {
+
+namespace {
+
+// Clips the segment a + t (b - a), t in [0,1], to lo <= x <= hi on one axis.
+bool clip_axis(double a, double d, double lo, double hi, double& t0, double& t1) {
+    if (d == 0.0) return a >= lo && a <= hi;
+    double ta = (lo - a) / d, tb = (hi - a) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    return t0 <= t1;
+}
+
+} // namespace
+
+RayMarcher::Frame RayMarcher::frame(const Camera& camera) {
+    Frame f;
+    f.view_projection = camera.projection_matrix() * camera.view_matrix();
+    f.inverse_view_projection = glm::inverse(f.view_projection);
+    return f;
+}
+
+RayMarcher::Hit RayMarcher::intersect(const glm::dvec3& a, const glm::dvec3& b, SurfaceModel surface) const {
+    return surface == SurfaceModel::Blocks ? intersect_blocks(a, b) : intersect_bilinear(a, b);
+}
+
+RayMarcher::Hit RayMarcher::intersect_blocks(const glm::dvec3& a, const glm::dvec3& b) const {
+    const Terrain& t = terrain_;
+    const double hs = t.h_scale();
+    const glm::dvec3 d = b - a;
+    double t0 = 0.0, t1 = 1.0;
+    if (!clip_axis(a.x, d.x, 0.0, t.width(), t0, t1) || !clip_axis(a.z, d.z, 0.0, t.depth(), t0, t1)) return {};
+    // Cell space: cell (i, j) = [i, i+1) x [j, j+1) holds the sample at its centre.
+    auto qx = [&](double s) { return (a.x + s * d.x) / hs + 0.5; };
+    auto qz = [&](double s) { return (a.z + s * d.z) / hs + 0.5; };
+    int ix = std::clamp(int(std::floor(qx(t0))), 0, t.cols() - 1);
+    int iz = std::clamp(int(std::floor(qz(t0))), 0, t.rows() - 1);
+    const double inf = std::numeric_limits<double>::infinity();
+    const double dqx = d.x / hs, dqz = d.z / hs;
+    const int sx = dqx > 0 ? 1 : -1, sz = dqz > 0 ? 1 : -1;
+    double next_x = dqx == 0 ? inf : ((dqx > 0 ? ix + 1 : ix) - (a.x / hs + 0.5)) / dqx;
+    double next_z = dqz == 0 ? inf : ((dqz > 0 ? iz + 1 : iz) - (a.z / hs + 0.5)) / dqz;
+    const double step_x = dqx == 0 ? inf : std::abs(1.0 / dqx), step_z = dqz == 0 ? inf : std::abs(1.0 / dqz);
+    // Boundaries crossed before t0 (the clip started inside a cell) are skipped.
+    while (next_x <= t0) next_x += step_x;
+    while (next_z <= t0) next_z += step_z;
+    double s = t0;
+    for (;;) {
+        const double e = std::min({next_x, next_z, t1});
+        const double h = t.sample_height(iz, ix);
+        const double ya = a.y + s * d.y, yb = a.y + e * d.y;
+        double hit_s = -1.0;
+        if (ya <= h) hit_s = s;                                  // front face (or starts inside)
+        else if (yb <= h) hit_s = s + (ya - h) / (ya - yb) * (e - s); // top face
+        if (hit_s >= 0.0) return {true, a + hit_s * d, t.color(iz, ix)};
+        if (e >= t1) return {};
+        s = e;
+        if (next_x <= next_z) {
+            ix += sx;
+            next_x += step_x;
+        } else {
+            iz += sz;
+            next_z += step_z;
+        }
+        if (ix < 0 || iz < 0 || ix >= t.cols() || iz >= t.rows()) return {};
+    }
+}
+
+RayMarcher::Hit RayMarcher::intersect_bilinear(const glm::dvec3& a, const glm::dvec3& b) const {
+    const Terrain& t = terrain_;
+    const glm::dvec3 d = b - a;
+    double t0 = 0.0, t1 = 1.0;
+    if (!clip_axis(a.x, d.x, 0.0, t.width(), t0, t1) || !clip_axis(a.z, d.z, 0.0, t.depth(), t0, t1)) return {};
+    auto above = [&](double s) {
+        const glm::dvec3 p = a + s * d;
+        return p.y - double(t.height_bilinear(float(p.x), float(p.z)));
+    };
+    // A quarter cell horizontally per step (and at least 8 steps vertically).
+    const double cells = std::hypot(d.x, d.z) * (t1 - t0) / t.h_scale();
+    const int n = std::max(8, int(std::ceil(cells * 4.0)));
+    double prev_s = t0, prev_f = above(t0);
+    if (prev_f <= 0.0) {
+        const glm::dvec3 p = a + t0 * d;
+        return {true, p, t.color(std::clamp(int(std::lround(p.z / t.h_scale())), 0, t.rows() - 1),
+                                 std::clamp(int(std::lround(p.x / t.h_scale())), 0, t.cols() - 1))};
+    }
+    for (int i = 1; i <= n; ++i) {
+        const double s = t0 + (t1 - t0) * i / n;
+        const double f = above(s);
+        if (f <= 0.0) {
+            double lo = prev_s, hi = s;
+            for (int k = 0; k < 40; ++k) {
+                const double mid = 0.5 * (lo + hi);
+                (above(mid) > 0.0 ? lo : hi) = mid;
+            }
+            const glm::dvec3 p = a + hi * d;
+            const int row = std::clamp(int(std::lround(p.z / t.h_scale())), 0, t.rows() - 1);
+            const int col = std::clamp(int(std::lround(p.x / t.h_scale())), 0, t.cols() - 1);
+            return {true, p, t.color(row, col)};
+        }
+        prev_s = s;
+        prev_f = f;
+    }
+    return {};
+}
+
+void RayMarcher::shade_pixel(const Camera& camera, const Frame& frame, SurfaceModel surface, int col, int row,
+                             Rgb8& color, float& depth) const {
+    // Pixel centre in normalised device coordinates (GL's y points up).
+    const double nx = (col + 0.5) / camera.width * 2.0 - 1.0;
+    const double ny = 1.0 - (row + 0.5) / camera.height * 2.0;
+    const glm::dvec4 pn = frame.inverse_view_projection * glm::dvec4(nx, ny, -1.0, 1.0);
+    const glm::dvec4 pf = frame.inverse_view_projection * glm::dvec4(nx, ny, 1.0, 1.0);
+    const glm::dvec3 a = glm::dvec3(pn) / pn.w, b = glm::dvec3(pf) / pf.w;
+    const Hit hit = intersect(a, b, surface);
+    if (!hit.hit) {
+        color = sky_color(env_, b - a);
+        depth = 1.0f;
+        return;
+    }
+    const glm::dvec4 clip = frame.view_projection * glm::dvec4(hit.point, 1.0);
+    depth = float(std::clamp((clip.z / clip.w + 1.0) * 0.5, 0.0, 1.0));
+    color = apply_fog(env_, hit.surface, fog_factor(env_, glm::length(hit.point - camera.eye)));
+}
+
+void RayMarcher::render(const Camera& camera, SurfaceModel surface, ColorImage& color, DepthImage& depth) const {
+    camera.validate();
+    if (color.width != camera.width || color.height != camera.height) color.resize(camera.width, camera.height);
+    if (depth.width != camera.width || depth.height != camera.height) depth.resize(camera.width, camera.height);
+    const Frame f = frame(camera);
+    tbb::parallel_for(0, camera.height, [&](int row) {
+        for (int col = 0; col < camera.width; ++col) shade_pixel(camera, f, surface, col, row, color.at(col, row), depth.at(col, row));
+    });
+}
+
+} // namespace overflight

@@ -1,0 +1,63 @@
+#pragma once
+// The reference terrain renderer: one ray per pixel, marched through the
+// height field with no coherence between pixels, so that the Floating Horizon
+// can be checked against it (DESIGN sec. 8).
+//
+// Based on: Szenberg 1997 sec. 4 (the plain ray casting the Floating Horizon
+// optimises), with rays built independently from Camera::ray: each pixel centre
+// is unprojected through the inverse of the OpenGL projection * view matrices
+// (near and far planes), and depth is the hit point pushed back through the same
+// matrices, exactly as GL would rasterise a surface there. Shear and tilt
+// cameras are therefore handled alike.
+//
+// Surfaces (DESIGN sec. 3), both limited to X in [0, width], Z in [0, depth]:
+//   blocks   - exact intersection with flat-topped columns centred on the
+//              samples (Amanatides-Woo traversal of the cells around samples);
+//   bilinear - march with steps of a quarter cell, then bisection.
+// The color is the nearest sample's; fog and sky follow Atmosphere.h.
+#include "core/Camera.h"
+#include "core/DataSet.h"
+#include "core/Image.h"
+#include "core/Terrain.h"
+#include "raycast/RaycastOptions.h"
+
+#include <glm/mat4x4.hpp>
+
+namespace overflight {
+
+class RayMarcher {
+public:
+    // Keeps references: terrain and env must outlive the marcher.
+    RayMarcher(const Terrain& terrain, const Environment& env) : terrain_(terrain), env_(env) {}
+
+    // Renders every pixel (parallel over rows). Resizes the images to the camera.
+    void render(const Camera& camera, SurfaceModel surface, ColorImage& color, DepthImage& depth) const;
+
+    // Per-camera data for shade_pixel.
+    struct Frame {
+        glm::dmat4 view_projection;
+        glm::dmat4 inverse_view_projection;
+    };
+    static Frame frame(const Camera& camera);
+
+    struct Hit {
+        bool hit = false;
+        glm::dvec3 point{0.0};
+        Rgb8 surface{};   // the sample's color, before fog
+    };
+    // First intersection of the segment a -> b (world) with the surface.
+    Hit intersect(const glm::dvec3& a, const glm::dvec3& b, SurfaceModel surface) const;
+
+    // Color (fog or sky applied) and window depth (1 for sky) of pixel (col, row).
+    void shade_pixel(const Camera& camera, const Frame& frame, SurfaceModel surface, int col, int row, Rgb8& color,
+                     float& depth) const;
+
+private:
+    Hit intersect_blocks(const glm::dvec3& a, const glm::dvec3& b) const;
+    Hit intersect_bilinear(const glm::dvec3& a, const glm::dvec3& b) const;
+
+    const Terrain& terrain_;
+    const Environment& env_;
+};
+
+} // namespace overflight
