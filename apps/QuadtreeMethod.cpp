@@ -1,0 +1,41 @@
+// Based on: Zamri, seed 001 ("Run-Time Processing"); Röttger et al. 1998.
+#include "QuadtreeMethod.h"
+
+#include "io/TileDirectory.h"
+
+#include <cstdio>
+
+namespace overflight::app {
+
+QuadtreeMethod::QuadtreeMethod(const DataSet& data, int tile_size, std::size_t memory_bound) {
+    TileGrid grid = terrain_tile_grid(data.terrain, tile_size);
+    TileLoader loader = terrain_tile_loader(data.terrain, grid);
+    tiles_ = std::make_unique<TileSet>(std::move(grid), std::move(loader), memory_bound);
+}
+
+QuadtreeMethod::QuadtreeMethod(const std::string& tile_dir, std::size_t memory_bound) {
+    const TileIndex index = read_tile_index(tile_dir);
+    tiles_ = std::make_unique<TileSet>(index.grid, tile_directory_loader(tile_dir, index), memory_bound);
+}
+
+const TileFrameStats& QuadtreeMethod::build(const Camera& camera, double error_px, MeshArrays& out) {
+    error_px_ = error_px;
+    last_ = tiles_->build_mesh(camera, error_px, out);
+    return last_;
+}
+
+std::string QuadtreeMethod::stats_json() const {
+    const TileFrameStats& s = last_;
+    char buf[640];
+    std::snprintf(buf, sizeof buf,
+                  "{\"method\":\"quadtree\",\"triangles\":%zu,\"error_px\":%g,\"tiles_candidates\":%d,"
+                  "\"tiles_visible\":%d,\"tiles_culled\":%d,\"tiles_loaded\":%d,\"tiles_cached\":%d,"
+                  "\"tiles_evicted\":%d,\"rings\":%d,\"cache_mib\":%.1f,"
+                  "\"ms\":{\"select\":%.3f,\"load\":%.3f,\"refine\":%.3f,\"fans\":%.3f,\"total\":%.3f}}",
+                  s.triangles, error_px_, s.candidates, s.visible, s.culled, s.loaded, s.cached, s.evicted, s.rings,
+                  double(s.cache_bytes) / (1024.0 * 1024.0), s.ms_select, s.ms_load, s.ms_refine, s.ms_fans,
+                  s.ms_select + s.ms_load + s.ms_refine + s.ms_fans);
+    return buf;
+}
+
+} // namespace overflight::app

@@ -1,0 +1,45 @@
+// `overflight tile TERRAIN -o DIR [--tile-size 2^k+1]` (DESIGN sec. 4, 6;
+// Zamri, seed 001, "Data tiling"): overlapping tiles, one GeoTIFF per tile,
+// DIR/index.json. The format is described in io/TileDirectory.h.
+#include "Commands.h"
+#include "TerrainOptions.h"
+#include "core/Error.h"
+#include "io/TileDirectory.h"
+
+#include <cstdio>
+#include <memory>
+
+namespace overflight::app {
+
+void add_tile_command(CLI::App& app) {
+    struct Args {
+        TerrainArgs terrain;
+        std::string out;
+        int tile_size = 257;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand(
+        "tile", "Cut a terrain into overlapping 2^k+1 tiles (16-bit GeoTIFF heights + RGB GeoTIFF colors) and index.json");
+    add_terrain_options(*cmd, args->terrain);
+    cmd->add_option("-o,--output", args->out, "output folder (created; a re-run resumes an interrupted tiling)")->required();
+    cmd->add_option("--tile-size", args->tile_size, "samples per tile side, 2^k+1 (default 257)");
+    cmd->callback([args] {
+        const DataSet data = load_terrain(args->terrain);
+        TileWriteOptions o;
+        o.tile_size = args->tile_size;
+        o.terminal_progress = true;
+        // Carry the source's own georeferencing when the terrain grid is the
+        // raster's grid (not reprojected, same size).
+        int rows = 0, cols = 0;
+        if (!data.info.reprojected &&
+            read_georeferencing(args->terrain.terrain, o.geotransform, o.crs_wkt, rows, cols) &&
+            rows == data.terrain.rows() && cols == data.terrain.cols())
+            o.georeferenced = true;
+        const TileWriteReport r = write_tile_directory(data, args->out, o);
+        std::printf("%s: %dx%d tiles of %d samples, %d written, %d already done, %d without data (flag 0)\n",
+                    args->out.c_str(), r.index.grid.tile_rows, r.index.grid.tile_cols, r.index.grid.tile_size, r.written,
+                    r.skipped, r.empty);
+    });
+}
+
+} // namespace overflight::app

@@ -1,0 +1,39 @@
+#pragma once
+// Zamri's fidelity measure for the quadtree renderer, computed on the CPU so
+// it needs no GPU: render the depth of the simplified mesh and of the
+// full-resolution mesh with the shared camera, and count the terrain pixels
+// whose view depth agrees within a tolerance (Zamri, seed 001, "Results":
+// 95.34 % of the full resolution data kept).
+//
+// Based on: Zamri, seed 001 ("Results"); the full mesh is DESIGN sec. 3
+// `mesh` (two triangles per cell, diagonals alternating as in the binary
+// triangle tree); depth is DESIGN sec. 2 window depth.
+#include "core/Camera.h"
+#include "core/Image.h"
+#include "core/MeshArrays.h"
+#include "core/Terrain.h"
+
+namespace overflight {
+
+// Every sample and two triangles per grid cell (the reference of the LOD
+// renderers). Colors and normals are left empty: only depth is compared.
+MeshArrays full_resolution_mesh(const Terrain& terrain);
+
+// Z-buffer rasterisation of a triangle mesh into OpenGL window depth with
+// the camera's matrices (pixel centres as in DESIGN sec. 2, near-plane
+// clipping, no back-face culling); 1.0 where nothing is hit. A reference
+// for tests and benchmarks, not a renderer.
+DepthImage rasterize_depth(const MeshArrays& mesh, const Camera& camera);
+
+struct DepthAgreement {
+    long long terrain_pixels = 0; // pixels the reference hits
+    long long agreeing = 0;       // of those, |d - d_ref| <= tolerance * d_ref in view depth
+    long long coverage_mismatch = 0; // terrain in one image, sky in the other
+    double share() const { return terrain_pixels ? double(agreeing) / double(terrain_pixels) : 1.0; }
+};
+
+// Compares view depths (not window depths, which are compressed near 1).
+DepthAgreement compare_depth(const DepthImage& test, const DepthImage& reference, const Camera& camera,
+                             double tolerance = 0.03);
+
+} // namespace overflight

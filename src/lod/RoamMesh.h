@@ -1,0 +1,169 @@
+#pragma once
+// Split-only ROAM: every frame the mesh is rebuilt from the two root triangles
+// of the binary triangle tree by splitting the triangle of highest priority
+// until the triangle budget is reached. Splitting a triangle also splits its
+// base neighbour, after first splitting that neighbour when it is coarser
+// (forced splits, recursively), so the mesh is always conforming.
+//
+// Based on: CMSC 23700 project 2a (seed 003) sec. 5 and 5.1, after
+// Duchaineau et al., "ROAMing terrain: real-time optimally adapting meshes",
+// IEEE Visualization 1997, sec. 4 (forced splits, Fig. 5), sec. 6 (nested
+// error bounds) and sec. 7 (priority queue of buckets). The bintree layout is
+// described in RoamVarianceTree.h.
+//
+// Priority = projected screen-space error: the variance-tree bound divided by
+// the distance from the eye to the nearest point of the triangle's bounding
+// circle, times the focal length in pixels (DESIGN sec. 2). It is clamped to
+// the parent's value so that priorities are nested (Duchaineau sec. 6): then
+// the largest error of the mesh never rises as the budget grows. Triangles
+// outside the view wedge (RoamViewWedge) get error 0 and are never split
+// unless forced; the triangles containing the focus point (the vehicle) get
+// the maximum priority and reach the finest level first. The queue is a set
+// of buckets on a logarithmic scale (the paper's "think radix sort"): O(1)
+// insert and remove; within one bucket (a factor 1 + 1/128) order is LIFO.
+//
+// Terrains that are not (2^N+1)^2 are padded (pad_to_pow2_plus1). Triangles
+// lying wholly in the padding are neither counted nor output; visible
+// triangles that straddle the border are split first, so the output ends at
+// the terrain's edge as soon as the bintree can represent it.
+//
+// No allocation per split: node and vertex pools are reserved for the budget
+// once and reused across frames (they grow only when the budget grows).
+#include "core/Camera.h"
+#include "core/MeshArrays.h"
+#include "core/Terrain.h"
+#include "lod/RoamVarianceTree.h"
+#include "lod/RoamViewWedge.h"
+
+#include <glm/vec2.hpp>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace overflight {
+
+struct RoamOptions {
+    // Deepest bintree level with its own variance bound (memory 2^(depth+2) x 2 bytes).
+    int variance_depth = RoamVarianceTree::kDefaultMaxDepth;
+};
+
+struct RoamStats {
+    std::size_t triangles = 0;     // output triangles
+    std::size_t vertices = 0;      // output vertices
+    std::size_t splits = 0;        // bintree triangles split, forced ones included
+    std::size_t forced_splits = 0; // of which forced by a neighbour (Fig. 5)
+    int max_level = 0;             // deepest leaf
+    // Projected error in pixels of the visible output triangles (the priority
+    // metric before the wedge and focus adjustments): largest and mean.
+    double max_error_px = 0;
+    double mean_error_px = 0;
+    std::size_t visible_triangles = 0;
+};
+
+// The bucket of a projected error in pixels: 1 for errors <= 2^-10 px, then
+// 128 buckets per octave up to 2^20 px; kRoamBuckets - 1 is reserved for the
+// maximum priority (focus, border). Monotone in `error_px`.
+constexpr int kRoamBuckets = 4096;
+int roam_bucket(float error_px);
+
+// Level-of-detail control (the flight's + and _ keys): the budget times
+// sqrt(2)^steps, snapped to the ladder round(2^(k/2)) so that +1 then -1
+// returns the original budget; kept within 64 .. 2^22.
+int roam_scale_budget(int budget, int steps);
+
+class RoamMesh {
+public:
+    // Builds the variance tree of `terrain` (padded to (2^N+1)^2 when needed).
+    // `terrain` must outlive the RoamMesh (vertex colors and normals are read
+    // from it). Throws Error("roam", ...) for a bad variance depth.
+    explicit RoamMesh(const Terrain& terrain, const RoamOptions& options = {});
+
+    // One frame: rebuilds the mesh for `camera` with at most `budget` output
+    // triangles (>= 2). The result has between budget - 1 and budget triangles
+    // unless every visible triangle reached the finest level first. `focus`
+    // is the world (x, z) of the vehicle. Throws Error("camera", ...) for an
+    // invalid camera and Error("--triangles", ...) for a budget < 2.
+    RoamStats tessellate(const Camera& camera, int budget, std::optional<glm::dvec2> focus = std::nullopt);
+
+    // The current mesh as plain arrays (positions in world coordinates,
+    // normals Terrain::sample_normal, colors Terrain::colors, counter-clockwise
+    // seen from above). Reuses the capacity of `out`.
+    void write_mesh(MeshArrays& out) const;
+
+    // The (2^N+1)^2 grid the bintree covers (the terrain itself or its padded copy).
+    const Terrain& grid() const { return padded_ ? padded_copy_ : *terrain_; }
+    const RoamVarianceTree& variance() const { return variance_; }
+
+    // Read access to the bintree of the last frame, for tests and tools.
+    enum NodeFlags : std::uint8_t {
+        kFocus = 1,     // contains the focus point
+        kOutside = 2,   // wholly in the padding
+        kStraddle = 4,  // partly in the padding
+        kInvisible = 8, // outside the view wedge
+    };
+    struct Node {
+        std::array<std::uint32_t, 3> v;  // vertex ids: apex, v0, v1 (hypotenuse v0-v1)
+        std::array<std::int32_t, 3> nb;  // neighbours across (apex,v0), (v0,v1) = base, (v1,apex); -1 = border
+        std::int32_t child;              // first child (second is child + 1), -1 for a leaf
+        std::uint32_t var_node;          // stored variance-tree node (itself or its deepest stored ancestor)
+        std::int32_t prev, next;         // bucket links
+        float error;                     // projected error in pixels, nested
+        std::uint16_t bucket;            // 0 when not queued
+        std::uint8_t level;
+        std::uint8_t flags;
+    };
+    struct Vertex {
+        std::int32_t row, col;
+        float y; // world height
+    };
+    const std::vector<Node>& nodes() const { return nodes_; }
+    const std::vector<Vertex>& vertices() const { return vertices_; }
+    // True when node i is output: a leaf not wholly in the padding.
+    bool is_output(std::size_t i) const { return nodes_[i].child < 0 && !(nodes_[i].flags & kOutside); }
+
+private:
+    struct Rc {
+        std::int32_t row, col;
+    };
+    void reserve_for(int budget);
+    std::uint32_t add_vertex(std::int32_t row, std::int32_t col);
+    void init_node(Node& n, int level, std::uint32_t var_node, std::uint8_t inherited_flags, float parent_error);
+    bool outside_domain(Rc a, Rc b, Rc c) const;
+    bool straddles_domain(Rc a, Rc b, Rc c) const;
+    int split_delta(Rc a, Rc v0, Rc v1, bool outside) const;
+    int chain_cost(std::int32_t t) const;
+    void split(std::int32_t t, bool forced);
+    void split_pair(std::int32_t t, std::int32_t b);
+    void make_children(std::int32_t t, std::uint32_t m);
+    void enqueue(std::int32_t t);
+    void dequeue(std::int32_t t);
+    std::int32_t top();
+    Rc rc(std::uint32_t vid) const { return {vertices_[vid].row, vertices_[vid].col}; }
+
+    const Terrain* terrain_;
+    bool padded_ = false;
+    Terrain padded_copy_;
+    RoamVarianceTree variance_;
+    int size_ = 0;           // 2^N + 1
+    int finest_ = 0;         // 2N
+    int domain_rows_ = 0, domain_cols_ = 0;
+    double min_y_ = 0, max_y_ = 0; // world height range of the grid
+    std::vector<float> radius_; // half hypotenuse in world units per level
+
+    // Per-frame state.
+    Camera camera_;
+    RoamViewWedge wedge_;
+    double focal_px_ = 1;
+    std::optional<glm::dvec2> focus_;
+    std::vector<Node> nodes_;
+    std::vector<Vertex> vertices_;
+    std::vector<std::int32_t> heads_; // bucket lists
+    int max_bucket_ = 0;
+    std::size_t capacity_ = 0;
+    long long count_ = 0;             // output triangles
+    std::size_t splits_ = 0, forced_ = 0;
+};
+
+} // namespace overflight

@@ -1,0 +1,240 @@
+// Based on: Röttger, Heidrich, Slusallek, Seidel 1998, sec. 3 (quadtree
+// matrix, criterion f, d2 and its propagation, fans); Zamri, seed 001.
+#include "lod/RottgerQuadtree.h"
+
+#include "core/Error.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace overflight {
+
+double rottger_c(double error_px, double focal_px, double min_resolution) {
+    if (!(error_px > 0) || !std::isfinite(error_px)) throw Error("--error", "must be a positive number of pixels");
+    return focal_px / (error_px * min_resolution);
+}
+
+RottgerQuadtree::RottgerQuadtree(const Terrain& samples, const std::vector<glm::vec3>& normals, int origin_row,
+                                 int origin_col, double min_resolution)
+    : terrain_(&samples), normals_(&normals), n_(samples.rows()), origin_row_(origin_row), origin_col_(origin_col),
+      C_(min_resolution) {
+    if (samples.rows() != samples.cols() || !is_pow2_plus1(samples.rows()) || samples.rows() < 3)
+        throw Error("quadtree", "patch of " + std::to_string(samples.rows()) + "x" + std::to_string(samples.cols()) +
+                                    " samples is not (2^k+1)^2 with k >= 1");
+    if (normals.size() != samples.heights().size()) throw Error("quadtree", "one normal per sample is needed");
+    if (!(min_resolution > 1)) throw Error("quadtree", "minimum resolution C must be greater than 1");
+    const std::size_t count = std::size_t(n_) * std::size_t(n_);
+    d2_.assign(count, 0.0f);
+    stamp_.assign(count, 0);
+    vertex_id_.assign(count, 0);
+    vertex_stamp_.assign(count, 0);
+    compute_d2();
+}
+
+std::size_t RottgerQuadtree::memory_bytes() const {
+    return d2_.size() * sizeof(float) + stamp_.size() * sizeof(std::uint32_t) * 3 +
+           (ring_.capacity() + edge_.capacity()) * sizeof(std::array<int, 2>);
+}
+
+void RottgerQuadtree::compute_d2() {
+    // Bottom-up over the levels so that each parent sees its children's
+    // final (already propagated) values (Röttger sec. 3.3).
+    const double K = C_ / (2.0 * (C_ - 1.0));
+    const int root = (n_ - 1) / 2;
+    for (int h = 1; h <= root; h *= 2) {
+        const double d = 2.0 * h * terrain_->h_scale();
+        for (int ci = h; ci < n_; ci += 2 * h)
+            for (int cj = h; cj < n_; cj += 2 * h) {
+                const double nw = world_y(ci - h, cj - h), ne = world_y(ci - h, cj + h);
+                const double sw = world_y(ci + h, cj - h), se = world_y(ci + h, cj + h);
+                const double c = world_y(ci, cj);
+                // The six check points of Röttger Fig. 5: four edge
+                // midpoints against their edge, the centre against both diagonals.
+                double dh = std::abs(world_y(ci - h, cj) - 0.5 * (nw + ne));
+                dh = std::max(dh, std::abs(world_y(ci + h, cj) - 0.5 * (sw + se)));
+                dh = std::max(dh, std::abs(world_y(ci, cj - h) - 0.5 * (nw + sw)));
+                dh = std::max(dh, std::abs(world_y(ci, cj + h) - 0.5 * (ne + se)));
+                dh = std::max(dh, std::abs(c - 0.5 * (nw + se)));
+                dh = std::max(dh, std::abs(c - 0.5 * (ne + sw)));
+                double v = dh / d;
+                if (h > 1) {
+                    const int q = h / 2;
+                    v = std::max({v, K * d2_[idx(ci - q, cj - q)], K * d2_[idx(ci - q, cj + q)],
+                                  K * d2_[idx(ci + q, cj - q)], K * d2_[idx(ci + q, cj + q)]});
+                }
+                d2_[idx(ci, cj)] = float(v);
+            }
+    }
+}
+
+void RottgerQuadtree::refine(const glm::dvec3& eye, double c) {
+    ++frame_;
+    if (frame_ == 0) { // wrapped: stale stamps could alias the new frame
+        std::fill(stamp_.begin(), stamp_.end(), 0u);
+        frame_ = 1;
+    }
+    eye_ = eye;
+    c_ = c;
+    const int root = (n_ - 1) / 2;
+    refine_node(root, root, root);
+}
+
+void RottgerQuadtree::refine_node(int ci, int cj, int h) {
+    if (h < 2) return; // 3x3 nodes are the finest: always leaves
+    const double hs = terrain_->h_scale();
+    const glm::dvec3 centre(hs * double(origin_col_ + cj), double(world_y(ci, cj)), hs * double(origin_row_ + ci));
+    const double l = glm::length(centre - eye_);
+    const double d = 2.0 * h * hs;
+    const double f = l / (d * C_ * std::max(c_ * double(d2_[idx(ci, cj)]), 1.0));
+    if (f >= 1.0) return;
+    stamp_[idx(ci, cj)] = frame_;
+    const int q = h / 2;
+    refine_node(ci - q, cj - q, q);
+    refine_node(ci - q, cj + q, q);
+    refine_node(ci + q, cj - q, q);
+    refine_node(ci + q, cj + q, q);
+}
+
+// node_subdivided / node_reached take a node centre in this patch's local
+// frame that may lie one step across a seam, in an edge neighbour, and ask
+// that patch (whose frame is shifted by n - 1 samples).
+bool RottgerQuadtree::node_subdivided(int ci, int cj) const {
+    const int m = n_ - 1;
+    const RottgerQuadtree* q = this;
+    if (ci < 0) { q = neighbours_[North]; ci += m; }
+    else if (ci > m) { q = neighbours_[South]; ci -= m; }
+    else if (cj < 0) { q = neighbours_[West]; cj += m; }
+    else if (cj > m) { q = neighbours_[East]; cj -= m; }
+    return q && q->subdivided(ci, cj);
+}
+
+bool RottgerQuadtree::has_patch(int ci, int cj) const {
+    const int m = n_ - 1;
+    if (ci < 0) return neighbours_[North] != nullptr;
+    if (ci > m) return neighbours_[South] != nullptr;
+    if (cj < 0) return neighbours_[West] != nullptr;
+    if (cj > m) return neighbours_[East] != nullptr;
+    return true;
+}
+
+bool RottgerQuadtree::node_reached(int ci, int cj, int h) const {
+    const int m = n_ - 1;
+    const RottgerQuadtree* q = this;
+    if (ci < 0) { q = neighbours_[North]; ci += m; }
+    else if (ci > m) { q = neighbours_[South]; ci -= m; }
+    else if (cj < 0) { q = neighbours_[West]; cj += m; }
+    else if (cj > m) { q = neighbours_[East]; cj -= m; }
+    if (!q) return false;
+    if (2 * h == m) return true; // a root is present whenever its patch is drawn
+    // The parent is centred on the neighbouring odd multiple of 2h.
+    const int pi = ((ci - h) / (2 * h)) % 2 == 1 ? ci - h : ci + h;
+    const int pj = ((cj - h) / (2 * h)) % 2 == 1 ? cj - h : cj + h;
+    return q->subdivided(pi, pj);
+}
+
+// Points strictly inside the edge shared with the node (ci, cj, h) that lies
+// on side `towards` of a leaf of the same size, in increasing row (West/East)
+// or column (North/South) order; the node is known to be present in the mesh.
+// These are the corners of the neighbour side's leaves along the edge, plus
+// the midpoint when that side's leaf is as large as ours: a smaller leaf
+// there skips its own midpoint on this edge, because its same-size node on
+// our side is not present (Röttger's rule), so we must not add it either.
+void RottgerQuadtree::collect_edge(int ci, int cj, int h, Side towards, bool same_size,
+                                   std::vector<std::array<int, 2>>& out) const {
+    const bool along_row = towards == North || towards == South;
+    // The shared edge is the node's edge facing the leaf.
+    const int er = towards == North ? ci + h : towards == South ? ci - h : ci;
+    const int ec = towards == West ? cj + h : towards == East ? cj - h : cj;
+    if (h >= 2 && node_subdivided(ci, cj)) {
+        const int q = h / 2;
+        const int off_r = towards == North ? q : towards == South ? -q : 0;
+        const int off_c = towards == West ? q : towards == East ? -q : 0;
+        if (along_row) {
+            collect_edge(ci + off_r, cj - q, q, towards, false, out);
+            out.push_back({er, ec});
+            collect_edge(ci + off_r, cj + q, q, towards, false, out);
+        } else {
+            collect_edge(ci - q, cj + off_c, q, towards, false, out);
+            out.push_back({er, ec});
+            collect_edge(ci + q, cj + off_c, q, towards, false, out);
+        }
+    } else if (same_size) {
+        out.push_back({er, ec});
+    }
+}
+
+std::uint32_t RottgerQuadtree::vertex(int row, int col) {
+    const std::size_t i = idx(row, col);
+    if (vertex_stamp_[i] == emit_frame_) return vertex_id_[i];
+    const double hs = terrain_->h_scale();
+    const auto id = std::uint32_t(out_->positions.size());
+    out_->positions.emplace_back(float(hs * double(origin_col_ + col)), world_y(row, col),
+                                 float(hs * double(origin_row_ + row)));
+    out_->normals.push_back((*normals_)[i]);
+    out_->colors.push_back(terrain_->color(row, col));
+    vertex_stamp_[i] = emit_frame_;
+    vertex_id_[i] = id;
+    return id;
+}
+
+void RottgerQuadtree::emit_leaves(int ci, int cj, int h) {
+    if (h >= 2 && subdivided(ci, cj)) {
+        const int q = h / 2;
+        emit_leaves(ci - q, cj - q, q);
+        emit_leaves(ci - q, cj + q, q);
+        emit_leaves(ci + q, cj - q, q);
+        emit_leaves(ci + q, cj + q, q);
+        return;
+    }
+    // The fan boundary, counter-clockwise seen from above (X east, Z south):
+    // NW, down the west edge, SW, along the south edge, SE, up the east
+    // edge, NE, back along the north edge.
+    ring_.clear();
+    auto edge = [&](Side side, int nr, int nc, bool reverse) {
+        if (!has_patch(nr, nc)) {
+            // Terrain border (or a patch not drawn this frame): no one to
+            // crack with, so keep the midpoint as if the neighbour were alike.
+            ring_.push_back({(ci + nr) / 2, (cj + nc) / 2});
+            return;
+        }
+        if (!node_reached(nr, nc, h)) return; // neighbour coarser: skip (Röttger)
+        edge_.clear();
+        collect_edge(nr, nc, h, side, true, edge_);
+        if (reverse) std::reverse(edge_.begin(), edge_.end());
+        ring_.insert(ring_.end(), edge_.begin(), edge_.end());
+    };
+    ring_.push_back({ci - h, cj - h});
+    edge(West, ci, cj - 2 * h, false);
+    ring_.push_back({ci + h, cj - h});
+    edge(South, ci + 2 * h, cj, false);
+    ring_.push_back({ci + h, cj + h});
+    edge(East, ci, cj + 2 * h, true);
+    ring_.push_back({ci - h, cj + h});
+    edge(North, ci - 2 * h, cj, true);
+    const std::uint32_t centre = vertex(ci, cj);
+    std::uint32_t prev = vertex(ring_[0][0], ring_[0][1]);
+    const std::uint32_t first = prev;
+    for (std::size_t k = 1; k <= ring_.size(); ++k) {
+        const std::uint32_t cur = k == ring_.size() ? first : vertex(ring_[k][0], ring_[k][1]);
+        out_->indices.insert(out_->indices.end(), {centre, prev, cur});
+        prev = cur;
+    }
+}
+
+std::size_t RottgerQuadtree::append_fans(MeshArrays& out) {
+    ++emit_frame_;
+    if (emit_frame_ == 0) {
+        std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0u);
+        emit_frame_ = 1;
+    }
+    out_ = &out;
+    const std::size_t before = out.triangle_count();
+    const int root = (n_ - 1) / 2;
+    emit_leaves(root, root, root);
+    out_ = nullptr;
+    return out.triangle_count() - before;
+}
+
+} // namespace overflight

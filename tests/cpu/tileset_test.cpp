@@ -1,0 +1,234 @@
+// Run-time tile selection: rings around the viewer, frustum culling before
+// loading, the LRU memory bound, seams without cracks over many tiles, and
+// Zamri's accuracy measure against the full-resolution mesh (CPU depth).
+#include "lod/QuadtreeAccuracy.h"
+#include "lod/TileSet.h"
+
+#include "core/DemoIsland.h"
+#include "core/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <tuple>
+
+using namespace overflight;
+
+namespace {
+
+Terrain slope(int n, float hs = 1.0f) {
+    Terrain t(n, n, hs);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) t.raw(i, j) = std::uint16_t(100 + (i * 7 + j * 3) % 23 + i / 4);
+    return t;
+}
+
+Camera camera_at(glm::dvec3 eye, double heading, double pitch, double far) {
+    Camera c;
+    c.eye = eye;
+    c.heading = heading;
+    c.pitch = pitch;
+    c.fov = 60;
+    c.width = 320;
+    c.height = 180;
+    c.near = 1;
+    c.far = far;
+    return c;
+}
+
+// Edges of a triangle list used once whose reverse is missing, excluding the
+// rectangle border [0, W] x [0, D]: cracks or T-junctions.
+int open_inner_edges(const MeshArrays& m, float W, float D) {
+    std::set<std::tuple<float, float, float, float>> directed;
+    for (std::size_t t = 0; t < m.indices.size(); t += 3)
+        for (int e = 0; e < 3; ++e) {
+            const glm::vec3 a = m.positions[m.indices[t + e]], b = m.positions[m.indices[t + (e + 1) % 3]];
+            directed.insert({a.x, a.z, b.x, b.z});
+        }
+    int open = 0;
+    for (const auto& [px, pz, qx, qz] : directed) {
+        const bool border = (px == qx && (px == 0 || px == W)) || (pz == qz && (pz == 0 || pz == D));
+        if (!border && !directed.count({qx, qz, px, pz})) ++open;
+    }
+    return open;
+}
+
+} // namespace
+
+// A 100x70 terrain pads to 129x129 (Zamri's 2^n+1 rule); with 33-sample tiles
+// that is 4x4 tiles of stride 32. Tile rows 0..2 start at rows 0, 32, 64
+// (< 70: data), row 3 starts at 96 (>= 70: padding only, flag 0); all four
+// tile columns start below 100.
+TEST(TileSet, GridFlagsTilesWithoutSourceData) {
+    Terrain t(70, 100, 2.0f);
+    const TileGrid g = terrain_tile_grid(t, 33);
+    EXPECT_EQ(g.tile_size, 33);
+    EXPECT_EQ(g.tile_rows, 4);
+    EXPECT_EQ(g.tile_cols, 4);
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(g.present(r, c), r < 3) << r << "," << c;
+    EXPECT_THROW(terrain_tile_grid(t, 32), Error);
+    // A tile size larger than the padded square is clamped to it.
+    EXPECT_EQ(terrain_tile_grid(t, 513).tile_size, 129);
+}
+
+// Tiles share their edge samples and reassemble to the padded terrain.
+TEST(TileSet, TilesReassembleToPaddedSource) {
+    Terrain t = slope(50);
+    for (int i = 0; i < 50; ++i)
+        for (int j = 0; j < 50; ++j) t.color(i, j) = Rgb8{std::uint8_t(i), std::uint8_t(j), 7};
+    const Terrain padded = pad_to_pow2_plus1(t);
+    const TileGrid g = terrain_tile_grid(t, 17);
+    ASSERT_EQ(g.tile_rows * g.stride() + 1, padded.rows());
+    for (int r = 0; r < g.tile_rows; ++r)
+        for (int c = 0; c < g.tile_cols; ++c) {
+            const TileSamples s = cut_tile(t, g, r, c, false);
+            for (int i = 0; i < 17; ++i)
+                for (int j = 0; j < 17; ++j) {
+                    ASSERT_EQ(s.samples.raw(i, j), padded.raw(r * 16 + i, c * 16 + j));
+                    ASSERT_EQ(s.samples.color(i, j), padded.color(r * 16 + i, c * 16 + j));
+                }
+        }
+}
+
+TEST(TileSet, CulledTilesAreNeitherLoadedNorDrawn) {
+    const Terrain t = slope(129);
+    const TileGrid g = terrain_tile_grid(t, 17); // 8x8 tiles of 16 units
+    std::set<std::pair<int, int>> loads;
+    auto base = terrain_tile_loader(t, g);
+    TileSet set(g, [&](int r, int c) { loads.insert({r, c}); return base(r, c); }, std::size_t(1) << 30);
+    // In tile (4, 4), looking south (+Z) with far = 20: rings = ceil(20/16)+1 = 3.
+    const Camera cam = camera_at({72, 140, 72}, 0, -10, 20);
+    MeshArrays m;
+    const TileFrameStats s = set.build_mesh(cam, 1.0, m);
+    EXPECT_EQ(s.rings, 3);
+    EXPECT_EQ(s.candidates, 49);
+    EXPECT_EQ(s.visible + s.culled, s.candidates);
+    EXPECT_GT(s.culled, 0);
+    EXPECT_EQ(s.loaded, s.visible);
+    EXPECT_EQ(int(loads.size()), s.visible);
+    for (const auto& [r, c] : loads) EXPECT_GE(r, 4) << "a tile behind the viewer was loaded"; // north is behind
+    EXPECT_GT(m.triangle_count(), 0u);
+    for (const glm::vec3& p : m.positions) EXPECT_GE(p.z, 64.0f);
+    // The same frame again loads nothing.
+    const TileFrameStats s2 = set.build_mesh(cam, 1.0, m);
+    EXPECT_EQ(s2.loaded, 0);
+    EXPECT_EQ(s2.triangles, s.triangles);
+}
+
+TEST(TileSet, LruRespectsMemoryBound) {
+    const Terrain t = slope(257);
+    const TileGrid g = terrain_tile_grid(t, 33); // 8x8 tiles of 32 units
+    int loads = 0;
+    auto base = terrain_tile_loader(t, g);
+    // Measure one frame's footprint, then bound the cache just above it.
+    TileSet probe(g, base, std::size_t(1) << 30);
+    MeshArrays m;
+    Camera cam = camera_at({16, 200, 16}, 45, -20, 120);
+    const TileFrameStats first = probe.build_mesh(cam, 1.0, m);
+    const std::size_t bound = first.cache_bytes + first.cache_bytes / 4;
+    TileSet set(g, [&](int r, int c) { ++loads; return base(r, c); }, bound);
+    // Fly diagonally across the terrain: old tiles must be evicted.
+    int evicted = 0;
+    for (int k = 0; k < 8; ++k) {
+        cam.eye = {16.0 + 30 * k, 200, 16.0 + 30 * k};
+        const TileFrameStats s = set.build_mesh(cam, 1.0, m);
+        evicted += s.evicted;
+        if (s.visible * (first.cache_bytes / std::max(first.visible, 1)) <= bound) {
+            EXPECT_LE(s.cache_bytes, bound + bound / 4);
+        }
+        for (const auto& [r, c] : set.visible_tiles()) EXPECT_TRUE(set.is_cached(r, c));
+    }
+    EXPECT_GT(evicted, 0);
+    EXPECT_FALSE(set.is_cached(0, 0)); // the start is long gone
+    // Flying back reloads what was evicted.
+    cam.eye = {16, 200, 16};
+    EXPECT_GT(set.build_mesh(cam, 1.0, m).loaded, 0);
+    EXPECT_GT(loads, 8);
+}
+
+// Over 8x8 tiles of a demo island seen from above at a slant, the stitched
+// mesh has no open inner edge: every seam agrees.
+TEST(TileSet, NoCrackAcrossTileSeams) {
+    DemoOptions o;
+    o.size = 257;
+    const DataSet demo = make_demo_island(o);
+    const Terrain& t = demo.terrain;
+    const TileGrid g = terrain_tile_grid(t, 33);
+    TileSet set(g, terrain_tile_loader(t, g), std::size_t(1) << 30);
+    const float W = t.width();
+    for (const auto& [eye, heading, pitch] :
+         {std::tuple{glm::dvec3(W / 2, 3000, -200), 0.0, -60.0}, std::tuple{glm::dvec3(100, 800, 100), 45.0, -30.0},
+          std::tuple{glm::dvec3(W / 2, t.max_height() + 50, W / 2), 200.0, -10.0}}) {
+        Camera cam = camera_at(eye, heading, pitch, 20000);
+        for (double err : {0.5, 2.0, 8.0}) {
+            MeshArrays m;
+            const TileFrameStats s = set.build_mesh(cam, err, m);
+            ASSERT_GT(s.visible, 1);
+            // The mesh covers the visible tiles only; count open edges that
+            // are neither on the terrain border nor on the visible set's outline.
+            std::set<std::pair<int, int>> vis(set.visible_tiles().begin(), set.visible_tiles().end());
+            const float tw = float(g.tile_world_size());
+            std::set<std::tuple<float, float, float, float>> directed;
+            for (std::size_t k = 0; k < m.indices.size(); k += 3)
+                for (int e = 0; e < 3; ++e) {
+                    const glm::vec3 a = m.positions[m.indices[k + e]], b = m.positions[m.indices[k + (e + 1) % 3]];
+                    directed.insert({a.x, a.z, b.x, b.z});
+                }
+            int open = 0;
+            for (const auto& [px, pz, qx, qz] : directed) {
+                if (directed.count({qx, qz, px, pz})) continue;
+                // An edge on a seam towards a tile that is not drawn is an outline edge.
+                const float mx = 0.5f * (px + qx), mz = 0.5f * (pz + qz);
+                const int tr = int(mz / tw), tc = int(mx / tw);
+                bool outline = false;
+                if (px == qx && std::fmod(px, tw) == 0)
+                    outline = !vis.count({tr, int(px / tw) - 1}) || !vis.count({tr, int(px / tw)});
+                if (pz == qz && std::fmod(pz, tw) == 0)
+                    outline = !vis.count({int(pz / tw) - 1, tc}) || !vis.count({int(pz / tw), tc});
+                if (!outline) ++open;
+            }
+            EXPECT_EQ(open, 0) << "error " << err;
+        }
+    }
+    // Everything visible from high above: the whole padded square is closed.
+    Camera top = camera_at({W / 2, 6000, W / 2 - 1}, 0, -88, 20000);
+    top.projection = Projection::Tilt; // looking straight down needs the tilted camera
+    top.fov = 120;
+    MeshArrays m;
+    const TileFrameStats s = set.build_mesh(top, 1.0, m);
+    EXPECT_EQ(s.culled, 0);
+    EXPECT_EQ(open_inner_edges(m, W, W), 0);
+}
+
+// Zamri's fidelity: at 1 px error the quadtree mesh keeps depth within 3 %
+// of the full mesh on >= 95 % of terrain pixels, with >= 20x fewer triangles
+// than the full-resolution mesh (2049^2 demo island, 20 km across, seen from
+// above its southern coast).
+TEST(TileSet, AccuracyAgainstFullResolution) {
+    DemoOptions o;
+    o.size = 2049;
+    const DataSet demo = make_demo_island(o);
+    const Terrain& t = demo.terrain;
+    const TileGrid g = terrain_tile_grid(t, 257);
+    TileSet set(g, terrain_tile_loader(t, g), std::size_t(1) << 30);
+    Camera cam = camera_at({t.width() / 2, t.max_height() + 150, -300}, 0, -12, 8000);
+    cam.width = 640;
+    cam.height = 360;
+    MeshArrays m;
+    const TileFrameStats s = set.build_mesh(cam, 1.0, m);
+    const MeshArrays full = full_resolution_mesh(t);
+    const DepthImage ref = rasterize_depth(full, cam);
+    const DepthAgreement a = compare_depth(rasterize_depth(m, cam), ref, cam, 0.03);
+    std::printf("quadtree %zu triangles vs full %zu (%.1fx fewer), depth within 3%%: %.2f %% of %lld pixels\n",
+                m.triangle_count(), full.triangle_count(), double(full.triangle_count()) / double(m.triangle_count()),
+                100 * a.share(), a.terrain_pixels);
+    EXPECT_GT(a.terrain_pixels, 50000);
+    EXPECT_GE(a.share(), 0.95);
+    EXPECT_GE(full.triangle_count(), 20 * s.triangles);
+    // A coarser target keeps fewer triangles and still most of the depth.
+    const TileFrameStats coarse = set.build_mesh(cam, 8.0, m);
+    EXPECT_LT(coarse.triangles, s.triangles / 2);
+    EXPECT_GE(compare_depth(rasterize_depth(m, cam), ref, cam, 0.03).share(), 0.9);
+}
