@@ -1,0 +1,41 @@
+// Based on: Szenberg et al. 1997 sec. 5.1 (camera mapping) and DESIGN sec. 2.
+#include "gl/FrameUniforms.h"
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+
+namespace overflight::gl {
+
+FrameUniforms::FrameUniforms() : ubo_(make_buffer()) {
+    glNamedBufferStorage(ubo_.get(), sizeof(FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+}
+
+void FrameUniforms::update(const Camera& camera, const Environment& env, const Terrain& terrain) {
+    // Eye-relative: shaders project (world - eye), which keeps float precision
+    // on large terrains where world coordinates reach tens of kilometres.
+    block_.view_proj = glm::mat4(camera.projection_matrix() * camera.view_matrix() *
+                                 glm::translate(glm::dmat4(1.0), camera.eye));
+    block_.eye = glm::vec4(glm::vec3(camera.eye), 1.0f);
+    const glm::vec3 sun = glm::length(env.sun_dir) > 0 ? glm::normalize(env.sun_dir) : glm::vec3(0, 1, 0);
+    block_.sun_dir = glm::vec4(sun, 0.0f);
+    block_.sun_color = glm::vec4(env.sun_color, 1.0f);
+    block_.ambient = glm::vec4(env.ambient, 1.0f);
+    block_.fog = glm::vec4(env.fog_color, env.fog_density);
+    block_.sky_zenith = glm::vec4(env.sky_zenith, 1.0f);
+    block_.sky_horizon = glm::vec4(env.sky_horizon, 1.0f);
+    block_.view_axis = glm::vec4(glm::vec3(camera.view_axis()), 0.0f);
+    block_.view_right = glm::vec4(glm::vec3(camera.right()), 0.0f);
+    block_.view_up = glm::vec4(glm::vec3(camera.view_up()), 0.0f);
+    const double fp = camera.focal_px();
+    const double shift = camera.projection == Projection::Shear ? fp * std::tan(glm::radians(camera.pitch)) : 0.0;
+    block_.image = glm::vec4(float(camera.width), float(camera.height), float(fp), float(shift));
+    block_.grid = glm::vec4(terrain.h_scale(), terrain.min_height(), float(terrain.rows()), float(terrain.cols()));
+    glNamedBufferSubData(ubo_.get(), 0, sizeof(FrameBlock), &block_);
+}
+
+void FrameUniforms::bind() const { glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo_.get()); }
+
+} // namespace overflight::gl

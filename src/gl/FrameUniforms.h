@@ -1,0 +1,40 @@
+#pragma once
+// The per-frame state every GL program reads (uniform block `Frame`, binding
+// 0): the camera's view-projection (DESIGN sec. 2, core Camera matrices), the
+// sun, fog and sky of the data set's Environment, and the terrain grid.
+//
+// Based on: Szenberg et al. 1997 sec. 5.1 (the OpenGL camera of the ray
+// caster) and the hovercraft handout (seed 003: sun lighting, GL_EXP fog, sky).
+#include "core/Camera.h"
+#include "core/DataSet.h"
+#include "gl/GlProgram.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+namespace overflight::gl {
+
+// std140 mirror of the GLSL block in kFrameGlsl (GlProgram.cpp).
+struct FrameBlock {
+    glm::mat4 view_proj;
+    glm::vec4 eye, sun_dir, sun_color, ambient, fog, sky_zenith, sky_horizon;
+    glm::vec4 view_axis, view_right, view_up, image, grid;
+};
+
+class FrameUniforms {
+public:
+    FrameUniforms();
+    // Fills the block for one frame. view_proj is computed in double as
+    // projection_matrix() * view_matrix() * translate(eye) and rounded once to
+    // float; shaders transform (world - eye) with it (clip_of() in kFrameGlsl).
+    void update(const Camera& camera, const Environment& env, const Terrain& terrain);
+    // Binds the block to uniform binding 0.
+    void bind() const;
+    const FrameBlock& block() const { return block_; }
+
+private:
+    FrameBlock block_{};
+    Buffer ubo_;
+};
+
+} // namespace overflight::gl

@@ -1,0 +1,41 @@
+// Based on: seed 003 (skybox) and DESIGN sec. 2 (camera rays).
+#include "gl/SkyPass.h"
+
+namespace overflight::gl {
+
+namespace {
+
+const char* const kSkyVs = R"(
+void main() {
+    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+    gl_Position = vec4(p * 2.0 - 1.0, 1.0, 1.0);
+}
+)";
+
+const char* const kSkyFs = R"(
+out vec4 frag;
+void main() {
+    // gl_FragCoord is the pixel centre with y up: v = H/2 - (r + 0.5) = y - H/2.
+    float u = gl_FragCoord.x - 0.5 * image.x;
+    float v = gl_FragCoord.y - 0.5 * image.y;
+    vec3 dir = view_axis.xyz + (u / image.z) * view_right.xyz + ((v + image.w) / image.z) * view_up.xyz;
+    float s = max(normalize(dir).y, 0.0);
+    frag = vec4(mix(sky_horizon.rgb, sky_zenith.rgb, s), 1.0);
+}
+)";
+
+} // namespace
+
+SkyPass::SkyPass() : program_(make_program("sky", kSkyVs, kSkyFs)), vao_(make_vertex_array()) {}
+
+void SkyPass::draw() const {
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glUseProgram(program_.get());
+    glBindVertexArray(vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_DEPTH_TEST);
+}
+
+} // namespace overflight::gl
