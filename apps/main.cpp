@@ -10,6 +10,11 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", "overflight 0.1.0");
     overflight::app::add_info_command(app);
+    overflight::app::add_render_command(app);
+    overflight::app::add_bench_command(app);
+    overflight::app::add_sim_command(app);
+    overflight::app::add_fly_command(app);
+    overflight::app::add_tile_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,6 +1,7 @@
 # Project-wide warning and sanitizer flags, applied to our own targets only.
 function(overflight_target_defaults target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wno-missing-field-initializers
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wno-missing-field-initializers
+    $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
     # GCC 12 reports false -Wrestrict positives inside std::string (GCC bug 105329).
     $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   if(OVERFLIGHT_WERROR)

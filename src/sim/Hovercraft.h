@@ -38,7 +38,7 @@ struct HovercraftParams {
 
 struct HovercraftState {
     double x = 0, z = 0;   // p, world X/Z
-    double y = 0;          // altitude: terrain height at p + params.altitude
+    double y = 0;          // altitude: ground_height(p) + params.altitude
     double velocity = 0;   // v >= 0, world units per second along the heading
     double heading = 0;    // h in degrees, kept in [0, 360)
 };
@@ -58,6 +58,14 @@ glm::dvec3 slope_vector(const Terrain& terrain, double x, double z, double headi
 // rule as slope_vector), clamped to the map.
 double mesh_height(const Terrain& terrain, double x, double z);
 
+// The ground the vehicle rides on: the bilinear surface (Terrain::height_bilinear,
+// seed 003 footnote 2 "2 meters above the terrain"), raised to the mesh triangle
+// where that is higher. On steep cells the two surfaces differ by more than the
+// 2 m altitude (up to a quarter of the cell's twist h00 - h01 - h10 + h11), and
+// the mesh is what the mesh/ROAM/quadtree renderers draw, so riding on the
+// higher of the two keeps the vehicle above every surface the window shows.
+double ground_height(const Terrain& terrain, double x, double z);
+
 // Heading in degrees wrapped to [0, 360).
 double wrap_heading(double degrees);
 
@@ -67,8 +75,8 @@ double wrap_heading(double degrees);
 // step that would leave X in [0, width] or Z in [0, depth] is mirrored at the
 // edge and the heading is reflected (h -> -h at the west/east edges,
 // h -> 180 - h at the north/south edges); speed is kept. The vehicle rides
-// `altitude` above the bilinear surface (Terrain::height_bilinear), so it is
-// never below the surface.
+// `altitude` above ground_height(), so it is never below the bilinear or the
+// mesh surface.
 class Hovercraft {
 public:
     // Throws Error("--at", ...) if (x, z) is outside the map or not finite, and

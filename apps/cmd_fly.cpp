@@ -1,0 +1,189 @@
+// `overflight fly TERRAIN [--scene FILE] [--method M] [--record path.csv]
+//                  [--frames N --press KEY:FROM-TO ... --screenshot FILE]
+//                  [--replay path.csv [--frames N] --out DIR [--video out.mp4]]`
+// (DESIGN sec. 6, issue 7). Interactive: a resizable window flying the
+// hovercraft (gl/FlightWindow). With --frames: an unattended run of N frames
+// with scripted keys (FROM-TO in frames). With --replay: the recorded cameras
+// rendered headless to DIR/frame_00000.png ... (and to a video through ffmpeg).
+// Prints one CSV line per method used: method,frames,fps,triangles_per_frame.
+#include "Commands.h"
+#include "TerrainOptions.h"
+#include "core/Error.h"
+#include "gl/FlightWindow.h"
+#include "io/FlightRecordFile.h"
+#include "io/ImageWriters.h"
+#include "io/SceneFile.h"
+#include "sim/KeyScript.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace overflight::app {
+
+namespace {
+
+// The terrain methods the window offers, in Tab order. A method is an entry
+// here: its name and how to build it in the current GL context.
+struct MethodEntry {
+    const char* name;
+    std::unique_ptr<gl::FlightMethod> (*make)(const DataSet&);
+};
+const std::vector<MethodEntry>& method_table() {
+    static const std::vector<MethodEntry> table = {
+        {"mesh", &gl::make_mesh_flight_method},
+    };
+    return table;
+}
+
+std::unique_ptr<gl::FlightMethod> make_method(const std::string& name, const DataSet& data) {
+    for (const MethodEntry& e : method_table())
+        if (name == e.name) return e.make(data);
+    return nullptr;
+}
+
+struct FlyOptions {
+    TerrainArgs terrain;
+    std::string scene, method = "mesh", record, replay, out, screenshot, video, size = "1280x720";
+    long long frames = 0;
+    std::vector<std::string> presses;
+    double fov = 60;
+    bool no_hud = false, hidden = false;
+};
+
+void parse_size(const std::string& s, int& w, int& h) {
+    char x = 0;
+    char extra = 0;
+    if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 16 || h < 16 || w > 16384 ||
+        h > 16384)
+        throw Error("--size", "'" + s + "' is not WxH with sides 16..16384");
+}
+
+void print_stats(const std::vector<gl::FlightMethodStats>& stats) {
+    std::printf("method,frames,fps,triangles_per_frame\n");
+    for (const gl::FlightMethodStats& s : stats)
+        std::printf("%s,%lld,%.2f,%lld\n", s.method.c_str(), s.frames, s.fps(),
+                    s.frames ? s.triangles / s.frames : 0);
+}
+
+std::string frame_name(long long i) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "frame_%05lld.png", i);
+    return buf;
+}
+
+// Encodes DIR/frame_%05d.png into `video` with ffmpeg, through a temporary
+// name so a failed encode leaves nothing behind.
+void encode_video(const std::string& dir, const std::string& video) {
+    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
+        throw Error("--video", "ffmpeg is not installed (the PNG frames are in " + dir + ")");
+    const std::string temp = video + ".partial";
+    const std::string cmd = "ffmpeg -loglevel error -y -framerate 60 -i '" + dir + "/frame_%05d.png' " +
+                            "-pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -f mp4 '" + temp + "'";
+    if (std::system(cmd.c_str()) != 0) {
+        std::filesystem::remove(temp);
+        throw Error(video, "ffmpeg failed to encode the frames");
+    }
+    std::filesystem::rename(temp, video);
+}
+
+void run_replay(const FlyOptions& o, const DataSet& data) {
+    if (o.out.empty()) throw Error("--out", "--replay needs --out DIR for the frames");
+    int w = 0, h = 0;
+    parse_size(o.size, w, h);
+    const FlightRecord record = read_flight_record(o.replay);
+    std::filesystem::create_directories(o.out);
+    long long index = 0;
+    FlightRecord rendered;
+    const gl::FlightMethodStats stats = gl::render_flight_record(
+        data, record, o.frames, o.method, w, h, o.fov, make_method, [&](const ColorImage& image, long long) {
+            write_png((std::filesystem::path(o.out) / frame_name(index)).string(), image);
+            rendered.frames.push_back(record.frames[std::size_t(index)]);
+            ++index;
+        });
+    // --record with --replay writes the camera path that was rendered.
+    if (!o.record.empty()) write_flight_record(o.record, rendered);
+    if (!o.video.empty()) encode_video(o.out, o.video);
+    print_stats({stats});
+}
+
+void run_fly(const FlyOptions& o) {
+    if (o.frames < 0) throw Error("--frames", "must be 0 or more");
+    if (!o.replay.empty() && o.frames == 0 && o.out.empty()) throw Error("--replay", "needs --out DIR");
+    if (o.replay.empty() && (!o.out.empty() || !o.video.empty()))
+        throw Error("--out", "--out and --video render a recorded flight: add --replay path.csv");
+    if (!o.screenshot.empty() && o.frames == 0)
+        throw Error("--screenshot", "needs --frames N (interactively, P saves a screenshot)");
+    bool known = false;
+    for (const MethodEntry& e : method_table()) known |= o.method == e.name;
+    if (!known) {
+        std::string names;
+        for (const MethodEntry& e : method_table()) names += std::string(names.empty() ? "" : ", ") + e.name;
+        throw Error("--method", "'" + o.method + "' is not available (available: " + names + ")");
+    }
+    std::vector<ScriptedPress> presses;
+    for (const std::string& p : o.presses) presses.push_back(parse_press(p));
+
+    DataSet data = load_terrain(o.terrain);
+    if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
+    if (!o.replay.empty()) return run_replay(o, data);
+
+    gl::FlightWindowOptions wo;
+    parse_size(o.size, wo.width, wo.height);
+    wo.methods.clear();
+    for (const MethodEntry& e : method_table()) wo.methods.push_back(e.name);
+    wo.method = o.method;
+    wo.fov = o.fov;
+    wo.frames = o.frames;
+    wo.script = KeyScript(std::move(presses));
+    wo.hud = !o.no_hud;
+    wo.visible = !o.hidden;
+    wo.start = data.start;
+    const std::filesystem::path shot_base = o.screenshot.empty() ? std::filesystem::path("overflight.png")
+                                                                 : std::filesystem::path(o.screenshot);
+    const gl::FlightResult result = gl::run_flight_window(data, wo, make_method, [&](const ColorImage& image, int index) {
+        if (index < 0) {
+            if (!o.screenshot.empty()) write_png(o.screenshot, image);
+            return;
+        }
+        // P: name-NNN.png beside --screenshot, or overflight-NNN.png here.
+        char suffix[16];
+        std::snprintf(suffix, sizeof suffix, "-%03d", index);
+        std::filesystem::path p = shot_base;
+        p.replace_filename(shot_base.stem().string() + suffix + ".png");
+        write_png(p.string(), image);
+        std::fprintf(stderr, "overflight: saved %s\n", p.string().c_str());
+    });
+    if (!o.record.empty()) write_flight_record(o.record, result.record);
+    print_stats(result.per_method);
+}
+
+} // namespace
+
+void add_fly_command(CLI::App& app) {
+    auto o = std::make_shared<FlyOptions>();
+    CLI::App* sub = app.add_subcommand("fly", "Fly the hovercraft over a terrain in a window");
+    add_terrain_options(*sub, o->terrain);
+    sub->add_option("--scene", o->scene, "Scene TOML with objects to add");
+    sub->add_option("--method", o->method, "Terrain method shown first (Tab cycles): mesh");
+    sub->add_option("--record", o->record, "Write the flight (per-frame camera and keys) as CSV");
+    sub->add_option("--replay", o->replay, "Render a recorded flight headless instead of flying");
+    sub->add_option("--out", o->out, "Folder for the replayed frames (frame_00000.png, ...)");
+    sub->add_option("--video", o->video, "With --replay: also encode the frames to this MP4 (needs ffmpeg)");
+    sub->add_option("--frames", o->frames, "Unattended: run exactly N frames (replay: at most N)");
+    sub->add_option("--press", o->presses, "KEY:FROM-TO holds KEY during frames FROM..TO-1 (keys: accelerate, brake, "
+                                           "left, right, fog, lighting, wireframe, detail-up, detail-down, "
+                                           "next-method, screenshot, hud, quit)")
+        ->take_all();
+    sub->add_option("--screenshot", o->screenshot, "With --frames: save the last frame as PNG");
+    sub->add_option("--size", o->size, "Window / replay size WxH");
+    sub->add_option("--fov", o->fov, "Horizontal field of view, degrees");
+    sub->add_flag("--no-hud", o->no_hud, "Start with the HUD hidden (H toggles)");
+    sub->add_flag("--hidden", o->hidden, "Do not show the window (unattended runs)");
+    sub->callback([o] { run_fly(*o); });
+}
+
+} // namespace overflight::app

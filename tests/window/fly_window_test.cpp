@@ -1,0 +1,165 @@
+// `overflight fly` in a real GLFW window (run under xvfb-run, Mesa llvmpipe):
+// unattended scripted flights, Tab cycling the methods, record and replay.
+#include "TestSupport.h"
+#include "io/FlightRecordFile.h"
+
+#include <gtest/gtest.h>
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+using namespace overflight;
+using overflight::test::run_overflight;
+using overflight::test::ScratchDir;
+
+namespace {
+
+struct Png {
+    int w = 0, h = 0;
+    std::vector<unsigned char> rgb;
+};
+
+Png read_png(const std::string& path) {
+    Png p;
+    int n = 0;
+    unsigned char* data = stbi_load(path.c_str(), &p.w, &p.h, &n, 3);
+    if (data) {
+        p.rgb.assign(data, data + std::size_t(p.w) * std::size_t(p.h) * 3);
+        stbi_image_free(data);
+    }
+    return p;
+}
+
+// "method,frames,fps,triangles_per_frame" lines -> (method, frames).
+std::vector<std::pair<std::string, long>> method_frames(const std::string& out) {
+    std::istringstream in(out);
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::pair<std::string, long>> v;
+    while (std::getline(in, line)) {
+        const auto c1 = line.find(','), c2 = line.find(',', c1 + 1);
+        v.emplace_back(line.substr(0, c1), std::stol(line.substr(c1 + 1, c2 - c1 - 1)));
+    }
+    return v;
+}
+
+// The methods this build offers, from the one-line error for an unknown one
+// ("... (available: mesh, voxel, ...)").
+std::vector<std::string> available_methods() {
+    const auto r = run_overflight("fly demo --demo-size 33 --method no-such-method --frames 1");
+    std::vector<std::string> names;
+    const auto open = r.err.find("available: ");
+    if (open == std::string::npos) return names;
+    std::istringstream in(r.err.substr(open + 11, r.err.find(')', open) - open - 11));
+    std::string name;
+    while (std::getline(in, name, ',')) names.push_back(name.substr(name.find_first_not_of(' ')));
+    return names;
+}
+
+const char* kFly = "fly demo --demo-size 257 --size 320x180 ";
+
+} // namespace
+
+TEST(FlyWindow, UnattendedRunSavesAScreenshotThatIsNotBlank) {
+    ScratchDir dir;
+    const std::string shot = dir / "shot.png";
+    const auto r = run_overflight(std::string(kFly) + "--frames 40 --press accelerate:0-40 left:10-20 --screenshot '" +
+                                  shot + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Png p = read_png(shot);
+    ASSERT_EQ(p.w, 320);
+    ASSERT_EQ(p.h, 180);
+    // Not blank: many distinct colors, and both sky (top rows) and ground.
+    std::set<unsigned> colors;
+    for (std::size_t i = 0; i < p.rgb.size(); i += 3)
+        colors.insert(unsigned(p.rgb[i]) << 16 | unsigned(p.rgb[i + 1]) << 8 | p.rgb[i + 2]);
+    EXPECT_GT(colors.size(), 200u);
+    const auto frames = method_frames(r.out);
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_EQ(frames[0].second, 40);
+    // Nothing else was left in the folder.
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path), {}), 1);
+}
+
+TEST(FlyWindow, TabCyclesThroughTheMethodsWithTheSameCamera) {
+    const std::vector<std::string> methods = available_methods();
+    ASSERT_FALSE(methods.empty());
+    ASSERT_EQ(methods[0], "mesh");
+    // A Tab at frame 5 and at frame 10: the frames split 5 / 5 / 5 over the
+    // next methods in order, wrapping around (with one method, all 15 on it).
+    ScratchDir dir;
+    const auto r = run_overflight(std::string(kFly) + "--frames 15 --press accelerate:0-15 next-method:5-6 "
+                                  "next-method:10-11 --record '" + (dir / "f.csv") + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::map<std::string, long> got;
+    for (const auto& [m, n] : method_frames(r.out)) got[m] += n;
+    std::map<std::string, long> expected;
+    for (int k = 0; k < 3; ++k) expected[methods[std::size_t(k) % methods.size()]] += 5;
+    EXPECT_EQ(got, expected);
+    // The camera path is continuous across the switches (same camera): no jump
+    // between frames 4 -> 5 and 9 -> 10 larger than the vehicle's travel.
+    const FlightRecord rec = read_flight_record(dir / "f.csv");
+    ASSERT_EQ(rec.frames.size(), 15u);
+    for (std::size_t i = 1; i < rec.frames.size(); ++i) {
+        const glm::dvec3 d = rec.frames[i].eye - rec.frames[i - 1].eye;
+        EXPECT_LT(std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), 5.0) << "frame " << i;
+    }
+}
+
+TEST(FlyWindow, RecordedFlightReplaysToTheSameCameraPath) {
+    ScratchDir dir;
+    const std::string rec = dir / "flight.csv", shot = dir / "last.png";
+    auto r = run_overflight(std::string(kFly) + "--frames 30 --press accelerate:0-30 right:5-25 --record '" + rec +
+                            "' --screenshot '" + shot + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const FlightRecord flown = read_flight_record(rec);
+    ASSERT_EQ(flown.frames.size(), 30u);
+    EXPECT_GT(flown.frames.back().velocity, 0.5);
+    EXPECT_NE(flown.frames.back().vehicle_heading, flown.frames.front().vehicle_heading); // it turned
+    // The same scripted flight again gives the same record: time is simulated.
+    const std::string rec2 = dir / "again.csv";
+    r = run_overflight(std::string(kFly) + "--frames 30 --press accelerate:0-30 right:5-25 --record '" + rec2 + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_flight_record(rec2), flown);
+    // Headless replay renders every recorded camera and reports the path it rendered.
+    const std::string out = dir / "frames", replayed = dir / "replayed.csv";
+    r = run_overflight(std::string(kFly) + "--replay '" + rec + "' --out '" + out + "' --record '" + replayed + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_flight_record(replayed), flown);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(out), {}), 30);
+    // The last replayed frame is the window's last frame (same camera, same
+    // renderer; window and headless contexts may round a few pixels apart).
+    const Png a = read_png(shot), b = read_png(out + "/frame_00029.png");
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    ASSERT_FALSE(a.rgb.empty());
+    long over = 0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) over += std::abs(int(a.rgb[i]) - int(b.rgb[i])) > 8;
+    EXPECT_LT(double(over) / double(a.rgb.size()), 0.01);
+}
+
+TEST(FlyWindow, BadOptionsAreOneLineErrors) {
+    ScratchDir dir;
+    struct Case { std::string args, subject; };
+    for (const Case& c : {Case{"--frames 5 --method warp", "--method"},
+                          Case{"--frames 5 --press jump:0-3", "--press"},
+                          Case{"--screenshot x.png", "--screenshot"},
+                          Case{"--replay '" + (dir / "missing.csv") + "' --out '" + (dir / "o") + "'",
+                               dir / "missing.csv"},
+                          Case{"--frames 5 --fov 60 --size 10", "--size"}}) {
+        SCOPED_TRACE(c.args);
+        std::string args = std::string(kFly) + c.args;
+        if (c.subject == "--size") args = "fly demo --demo-size 33 " + c.args; // kFly sets a size already
+        const auto r = run_overflight(args);
+        EXPECT_EQ(r.exit_code, 1);
+        EXPECT_EQ(overflight::test::line_count(r.err), 1) << r.err;
+        EXPECT_EQ(r.err.rfind("overflight: " + c.subject + ":", 0), 0u) << r.err;
+    }
+}
