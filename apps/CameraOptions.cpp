@@ -1,17 +1,12 @@
-// Camera options (DESIGN sec. 6) and the table of rendering methods shared by
-// `render` and `bench`. See CameraOptions.h.
+// Camera options (DESIGN sec. 6) shared by `render` and `bench`. See CameraOptions.h.
 #include "CameraOptions.h"
 
 #include "core/Error.h"
-#include "raycast/FloatingHorizon.h"
-#include "raycast/FloatingHorizonLiteral.h"
-#include "raycast/RayMarcher.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -178,125 +173,6 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
         throw Error("--far", num(cam.far) + " is more than 2^24 cells (" + num(t.h_scale()) + " each) away");
     cam.validate();
     return cam;
-}
-
-RaycastOptions RenderSettings::raycast() const {
-    RaycastOptions o;
-    o.surface = parse_surface_model(surface, "--surface");
-    o.tilt = parse_tilt_method(tilt_method, "--tilt-method");
-    o.lod = lod;
-    if (!(near_step >= 0.0 && near_step <= 1000.0)) throw Error("--near-step", "must be in 0..1000 pixels");
-    o.near_step_pixels = near_step;
-    return o;
-}
-
-void add_render_settings(CLI::App& cmd, RenderSettings& s) {
-    cmd.add_option("--surface", s.surface,
-                   "voxel surface model: blocks (each sample a flat-topped column, the papers' voxels) or bilinear")
-        ->capture_default_str();
-    cmd.add_flag("--lod", s.lod,
-                 "voxel distance LOD: past the distance where a pixel spans half a cell, step 2^L cells through "
-                 "max-height/mean-color pyramids (faster, slightly taller distant silhouettes)");
-    cmd.add_option("--tilt-method", s.tilt_method,
-                   "voxel with --projection tilt: exact (vertical planes covering the tilted view, each pixel "
-                   "reprojected exactly, at most a quarter pixel sideways) or guedes (Guedes' per-row ray slopes and "
-                   "incremental d-buffer; approximate off the centre row)")
-        ->capture_default_str();
-    cmd.add_option("--near-step", s.near_step,
-                   "voxel: near the eye, where a cell spans more pixels, put slices closer than one cell so that a "
-                   "step spans at most this many pixels (down to 1/8 cell); 0 = one cell everywhere as in the paper")
-        ->capture_default_str();
-}
-
-namespace {
-
-nlohmann::json raycast_stats_json(const RaycastStats& s) {
-    nlohmann::json j;
-    j["ms"] = {{"setup", s.ms_setup}, {"cast", s.ms_cast}, {"resolve", s.ms_resolve}, {"total", s.ms_total}};
-    j["samples"] = s.samples;
-    j["samples_visited"] = s.samples_visited;
-    j["columns"] = s.columns;
-    j["slices"] = s.slices;
-    j["pixels_painted"] = s.pixels_painted;
-    if (s.fallback_pixels) j["fallback_pixels"] = s.fallback_pixels;
-    j["ns_per_sample"] = s.samples ? s.ms_total * 1e6 / double(s.samples) : 0.0;
-    return j;
-}
-
-class VoxelRenderer : public ViewRenderer {
-public:
-    VoxelRenderer(const DataSet& d, const RenderSettings& s) : fh_(d.terrain, d.environment), options_(s.raycast()) {}
-    void render(const Camera& camera, ColorImage& color, DepthImage& depth, nlohmann::json& stats) override {
-        RaycastStats s;
-        fh_.render(camera, options_, color, depth, &s);
-        stats = raycast_stats_json(s);
-        stats["surface"] = to_string(options_.surface);
-        stats["lod"] = options_.lod;
-        if (camera.projection == Projection::Tilt) stats["tilt_method"] = to_string(options_.tilt);
-    }
-
-private:
-    FloatingHorizon fh_;
-    RaycastOptions options_;
-};
-
-class LiteralRenderer : public ViewRenderer {
-public:
-    LiteralRenderer(const DataSet& d, const RenderSettings& s) : data_(d), options_(s.raycast()) {
-        if (options_.lod) throw Error("--lod", "voxel-literal has no LOD (it is Algorithm 1 as printed)");
-    }
-    void render(const Camera& camera, ColorImage& color, DepthImage& depth, nlohmann::json& stats) override {
-        RaycastStats s;
-        render_floating_horizon_literal(data_.terrain, data_.environment, camera, options_.surface, color, depth, &s);
-        stats = raycast_stats_json(s);
-        stats["surface"] = to_string(options_.surface);
-    }
-
-private:
-    const DataSet& data_;
-    RaycastOptions options_;
-};
-
-class RayMarchRenderer : public ViewRenderer {
-public:
-    RayMarchRenderer(const DataSet& d, const RenderSettings& s) : marcher_(d.terrain, d.environment), options_(s.raycast()) {}
-    void render(const Camera& camera, ColorImage& color, DepthImage& depth, nlohmann::json& stats) override {
-        const auto t0 = std::chrono::steady_clock::now();
-        marcher_.render(camera, options_.surface, color, depth);
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        stats = {{"ms", {{"total", ms}}}, {"rays", (long long)camera.width * camera.height},
-                 {"surface", to_string(options_.surface)}};
-    }
-
-private:
-    RayMarcher marcher_;
-    RaycastOptions options_;
-};
-
-} // namespace
-
-const std::vector<RenderMethod>& render_methods() {
-    static const std::vector<RenderMethod> methods = {
-        {"voxel", "Floating Horizon ray caster (Szenberg 1997), parallel, exact", true,
-         [](const DataSet& d, const RenderSettings& s) { return std::make_unique<VoxelRenderer>(d, s); }},
-        {"voxel-literal", "Szenberg's Algorithm 1 as printed, single-threaded (reference, shear only)", true,
-         [](const DataSet& d, const RenderSettings& s) { return std::make_unique<LiteralRenderer>(d, s); }},
-        {"raymarch", "brute-force per-pixel ray marcher (reference)", false,
-         [](const DataSet& d, const RenderSettings& s) { return std::make_unique<RayMarchRenderer>(d, s); }},
-    };
-    return methods;
-}
-
-std::string render_method_names() {
-    std::string names;
-    for (const auto& m : render_methods()) names += (names.empty() ? "" : "|") + m.name;
-    return names;
-}
-
-const RenderMethod& find_render_method(const std::string& name, const std::string& option) {
-    for (const auto& m : render_methods())
-        if (m.name == name) return m;
-    throw Error(option, "unknown method '" + name + "' (known: " + render_method_names() + ")");
 }
 
 } // namespace overflight::app

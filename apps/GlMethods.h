@@ -1,49 +1,44 @@
 #pragma once
-// The GL side of `overflight render` and `overflight bench` (DESIGN sec. 6):
-// terrain methods mesh, points, top-faces, front-faces, segments, blocks drawn
-// by OpenGL with the objects, and Szenberg's composite of the ray-cast image
-// (voxel+objects, voxel+present). Thin: the work is in src/gl.
+// The GL side of the render methods (RenderMethods.h): one headless context
+// with the objects uploaded, drawing a terrain three ways -- a resident GL
+// representation (mesh and Szenberg's Table 2 baselines), a per-frame mesh
+// from a LOD method (ROAM, quadtree), or Szenberg's composite of a ray-cast
+// image (sec. 5, Fig. 5) -- and reporting each step's time under stats["ms"].
+// Thin: the work is in src/gl.
+//
+// Based on: Szenberg et al. 1997 sec. 5 and 7 (Tables 1 and 2).
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
+#include "core/MeshArrays.h"
 #include "gl/HeadlessRenderer.h"
 
 #include <nlohmann/json.hpp>
 
 #include <memory>
-#include <string>
 
 namespace overflight::app {
 
-struct GlRenderOptions {
-    const Scene* extra_scene = nullptr;          // --scene objects, drawn with data.scene
-    const ColorImage* raycast_color = nullptr;   // voxel methods: the ray caster's output
-    const DepthImage* raycast_depth = nullptr;
-    bool want_depth = false;                     // fill `depth` (--depth)
-};
-
-// True for the method names render_gl accepts: mesh, points, top-faces,
-// front-faces, segments, blocks, voxel (= voxel+objects), voxel+objects, voxel+present.
-bool is_gl_method(const std::string& method);
-
-// Keeps the headless context and the uploaded terrain between frames (bench).
 class GlMethods {
 public:
-    // Creates the context and uploads the objects; throws Error.
-    GlMethods(const DataSet& data, const Scene* extra_scene = nullptr);
-    // Renders one frame. For voxel methods options.raycast_color/depth must be
-    // set (Error("--method", ...) otherwise). Adds to *stats (when given):
-    // "gl_renderer", per-step "ms_<step>", "ms_gl_total", "triangles",
-    // "object_triangles", "chunks_drawn", "chunks_total".
-    void render(const std::string& method, const Camera& camera, const GlRenderOptions& options, ColorImage& color,
-                DepthImage& depth, nlohmann::json* stats);
+    // Creates the context (Error("opengl", ...)) and uploads the objects of
+    // data.scene and `extra_scene` (Error(path, ...) for a bad model file).
+    GlMethods(const DataSet& data, const Scene& extra_scene);
+
+    // `depth` may be null when the caller does not need it (no read-back).
+    // Steps: terrain, objects, present[, depth_readback].
+    void render_terrain(gl::TerrainMethod method, const Camera& camera, ColorImage& color, DepthImage* depth,
+                        nlohmann::json& stats);
+    // Steps as render_terrain; "terrain" includes uploading `mesh`.
+    void render_mesh(const MeshArrays& mesh, const Camera& camera, ColorImage& color, DepthImage* depth,
+                     nlohmann::json& stats);
+    // Steps: color_upload[, depth_upload, objects], present[, depth_readback].
+    void composite(const ColorImage& raycast_color, const DepthImage& raycast_depth, const Camera& camera,
+                   bool with_objects, ColorImage& color, DepthImage* depth, nlohmann::json& stats);
 
 private:
+    void add_stats(const gl::FrameTimings& t, nlohmann::json& stats) const;
     std::unique_ptr<gl::HeadlessRenderer> gl_;
 };
-
-// One-shot convenience: a GlMethods for this call only.
-void render_gl(const std::string& method, const DataSet& data, const Camera& camera, const GlRenderOptions& options,
-               ColorImage& color, DepthImage& depth, nlohmann::json* stats);
 
 } // namespace overflight::app

@@ -1,11 +1,14 @@
-// `overflight render TERRAIN -o out.png [--method M] [camera options] [--depth depth.tif] [--stats]`
+// `overflight render TERRAIN -o out.png [--method M] [camera options] [--scene FILE]
+//                   [--depth depth.tif] [--stats] [--triangles N] [--error PX]`
 // (DESIGN sec. 6): one view of a terrain, written as PNG (+ float32 window
-// depth TIFF), with timings as one JSON object on stdout.
+// depth TIFF), with timings and counts as one JSON object on stdout.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "RenderMethods.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "io/ImageWriters.h"
+#include "io/TileDirectory.h"
 
 #include <chrono>
 #include <cstdio>
@@ -37,12 +40,17 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
     cmd->callback([args] {
-        const RenderMethod& method = find_render_method(args->method);
+        const RenderMethod* method = &find_render_method(args->method);
         auto t0 = std::chrono::steady_clock::now();
         const DataSet data = load_terrain(args->terrain);
         const double ms_load = ms_since(t0);
         const Camera camera = make_camera(args->camera, data, 1280, 720);
-        std::unique_ptr<ViewRenderer> renderer = method.create(data, args->settings);
+        RenderSession session(data, args->settings,
+                              is_tile_directory(args->terrain.terrain) ? args->terrain.terrain : std::string());
+        session.want_depth = !args->depth.empty();
+        // A user's `voxel` view shows the objects: Szenberg's composite.
+        if (method->name == "voxel" && session.has_objects()) method = &find_render_method("voxel+objects");
+        std::unique_ptr<ViewRenderer> renderer = method->create(session);
         ColorImage color;
         DepthImage depth;
         nlohmann::json stats;
@@ -51,10 +59,17 @@ void add_render_command(CLI::App& app) {
         const double ms_render = ms_since(t0);
         t0 = std::chrono::steady_clock::now();
         write_png(args->out, color);
-        if (!args->depth.empty()) write_depth_tiff(args->depth, depth);
+        if (!args->depth.empty()) {
+            try {
+                write_depth_tiff(args->depth, depth);
+            } catch (...) {
+                std::remove(args->out.c_str()); // no half-written output
+                throw;
+            }
+        }
         const double ms_write = ms_since(t0);
         if (args->stats) {
-            stats["method"] = method.name;
+            stats["method"] = args->method;
             stats["width"] = camera.width;
             stats["height"] = camera.height;
             stats["projection"] = to_string(camera.projection);

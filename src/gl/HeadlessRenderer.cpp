@@ -54,11 +54,22 @@ RenderTarget& HeadlessRenderer::target_for(const Camera& camera) {
 
 void HeadlessRenderer::render(TerrainMethod m, const Camera& camera, ColorImage& color, DepthImage* depth,
                               FrameTimings* timings) {
-    RenderTarget& target = target_for(camera);
+    target_for(camera);
     renderer_->prepare(m); // uploads are not part of a frame
+    draw_frame(camera, [&] { return renderer_->draw_terrain(m); }, color, depth, timings);
+}
+
+void HeadlessRenderer::render_mesh(const MeshArrays& mesh, const Camera& camera, ColorImage& color, DepthImage* depth,
+                                   FrameTimings* timings) {
+    draw_frame(camera, [&] { return TerrainDrawStats{renderer_->draw_mesh(mesh)}; }, color, depth, timings);
+}
+
+void HeadlessRenderer::draw_frame(const Camera& camera, const std::function<TerrainDrawStats()>& draw_terrain,
+                                  ColorImage& color, DepthImage* depth, FrameTimings* timings) {
+    RenderTarget& target = target_for(camera);
     StepClock clock(timings);
     renderer_->begin_frame(camera, target);
-    const TerrainDrawStats s = renderer_->draw_terrain(m);
+    const TerrainDrawStats s = draw_terrain();
     clock.lap("terrain");
     const long long objects = renderer_->draw_objects();
     clock.lap("objects");

@@ -13,6 +13,7 @@
 #include "gl/GlContext.h"
 #include "gl/Renderer.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -39,6 +40,10 @@ public:
     // (and the depth when `depth` is not null). Steps: terrain, objects, present[, depth_readback].
     void render(TerrainMethod m, const Camera& camera, ColorImage& color, DepthImage* depth,
                 FrameTimings* timings = nullptr);
+    // The same for a per-frame mesh of a LOD method (ROAM, quadtree): its
+    // upload is part of the "terrain" step, as it is every frame.
+    void render_mesh(const MeshArrays& mesh, const Camera& camera, ColorImage& color, DepthImage* depth,
+                     FrameTimings* timings = nullptr);
 
     // Szenberg's composite: loads a ray-cast color image (and, with objects,
     // its window depth) into the target, draws the objects with the depth
@@ -53,6 +58,9 @@ public:
 
 private:
     RenderTarget& target_for(const Camera& camera);
+    // begin_frame, draw_terrain() (one "terrain" step), objects, read-back.
+    void draw_frame(const Camera& camera, const std::function<TerrainDrawStats()>& draw_terrain, ColorImage& color,
+                    DepthImage* depth, FrameTimings* timings);
     std::unique_ptr<HeadlessContext> context_; // first member: destroyed last
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<RenderTarget> target_;

@@ -1,0 +1,230 @@
+// `overflight render` and `overflight bench` as a user runs them (DESIGN
+// sec. 6): every method writes its PNG, depth and --stats JSON; objects of
+// --scene appear; bad input gives one-line errors with nothing left behind.
+// Label gl: `voxel` composites the demo's objects through OpenGL.
+#include "ReadPng.h"
+#include "TestSupport.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+using namespace overflight;
+using namespace overflight::test;
+
+TEST(RenderVoxelCli, WritesPngDepthAndStats) {
+    ScratchDir dir;
+    const RunResult r = run_overflight("render demo --demo-size 65 -o '" + dir / "out.png" + "' --depth '" +
+                                       dir / "depth.tif" + "' --stats --size 64x40 --pitch -10");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "out.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "depth.tif"));
+    EXPECT_EQ(line_count(r.out), 1);
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["method"], "voxel");
+    EXPECT_EQ(j["width"], 64);
+    EXPECT_EQ(j["height"], 40);
+    EXPECT_EQ(j["columns"], 64);
+    EXPECT_GT(j["samples"].get<long long>(), 0);
+    EXPECT_TRUE(j["ms"].contains("cast"));
+    EXPECT_TRUE(j["ms"].contains("write"));
+}
+
+TEST(RenderVoxelCli, EveryCameraOption) {
+    ScratchDir dir;
+    const RunResult r = run_overflight("render demo --demo-size 65 -o '" + dir / "a.png" +
+                                       "' --at 300,300 --agl 50 --heading 45 --pitch 5 --projection tilt --fov 70 "
+                                       "--size 48x32 --near 0.5 --far 900 --surface bilinear --tilt-method guedes --stats");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["projection"], "tilt");
+    EXPECT_EQ(j["tilt_method"], "guedes");
+    EXPECT_EQ(j["surface"], "bilinear");
+    const RunResult e = run_overflight("render demo --demo-size 65 -o '" + dir / "b.png" +
+                                       "' --eye 320,400,-50 --lod --size 48x32");
+    EXPECT_EQ(e.exit_code, 0) << e.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "b.png"));
+}
+
+TEST(RenderVoxelCli, BadCameraInputIsOneLineAndLeavesNothing) {
+    ScratchDir dir;
+    const std::string out = dir / "bad.png";
+    const struct {
+        const char* args;
+        const char* subject;
+    } cases[] = {
+        {"--near 10 --far 5", "--far"},
+        {"--far 0", "--far"},
+        {"--fov 0", "--fov"},
+        {"--fov 180", "--fov"},
+        {"--pitch 89", "--pitch"},
+        {"--pitch -95", "--pitch"},
+        {"--size 0x100", "--size"},
+        {"--size 20000x10", "--size"},
+        {"--size banana", "--size"},
+        {"--eye 1e9,100,0", "--eye"},
+        {"--eye 1,2", "--eye"},
+        {"--at 99999,5", "--at"},
+        {"--projection fisheye", "--projection"},
+        {"--surface voxels", "--surface"},
+        {"--tilt-method fast", "--tilt-method"},
+        {"--method nope", "--method"},
+    };
+    for (const auto& c : cases) {
+        const std::string size = std::string(c.args).find("--size") == std::string::npos ? " --size 16x8 " : " ";
+        const RunResult r = run_overflight("render demo --demo-size 33 -o '" + out + "'" + size + c.args);
+        EXPECT_NE(r.exit_code, 0) << c.args;
+        EXPECT_EQ(line_count(r.err), 1) << c.args << ": " << r.err;
+        EXPECT_EQ(r.err.rfind(std::string("overflight: ") + c.subject + ":", 0), 0u) << c.args << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
+    }
+}
+
+TEST(RenderVoxelCli, LiteralNeedsShear) {
+    ScratchDir dir;
+    const RunResult r = run_overflight("render demo --demo-size 33 -o '" + dir / "x.png" +
+                                       "' --size 16x8 --method voxel-literal --projection tilt");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(r.err.rfind("overflight: --projection:", 0), 0u) << r.err;
+}
+
+TEST(BenchCli, JsonListsVoxelAndLiteral) {
+    const RunResult r =
+        run_overflight("bench demo --demo-size 65 --json --size 40x24 --frames 2 --methods voxel,voxel-literal");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["runs"].size(), 2u);
+    EXPECT_EQ(j["runs"][0]["method"], "voxel");
+    EXPECT_EQ(j["runs"][1]["method"], "voxel-literal");
+    for (const auto& run : j["runs"]) {
+        EXPECT_EQ(run["width"], 40);
+        EXPECT_EQ(run["height"], 24);
+        EXPECT_EQ(run["frames"], 2);
+        EXPECT_GT(run["ms_median"].get<double>(), 0.0);
+        EXPECT_GT(run["samples"].get<long long>(), 0);
+    }
+    // Both methods cast the same columns x slices.
+    EXPECT_EQ(j["runs"][0]["samples"], j["runs"][1]["samples"]);
+}
+
+TEST(BenchCli, DefaultRunsEveryMethodWithStepsAndAccuracy) {
+    const RunResult r = run_overflight("bench demo --demo-size 65 --json --size 64x36 --frames 1");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    std::set<std::string> methods;
+    for (const auto& run : j["runs"]) methods.insert(run["method"].get<std::string>());
+    for (const char* m : {"voxel", "voxel+present", "voxel+objects", "voxel-literal", "mesh", "points", "top-faces",
+                          "front-faces", "segments", "blocks", "roam", "quadtree"})
+        EXPECT_TRUE(methods.count(m)) << m;
+    for (const auto& run : j["runs"]) {
+        const std::string m = run["method"];
+        if (m == "voxel+objects") {
+            for (const char* step : {"raycast", "color_upload", "depth_upload", "objects", "present"})
+                EXPECT_TRUE(run["steps_ms"].contains(step)) << step;
+        }
+        if (m == "roam") {
+            EXPECT_GT(run["triangles_per_s"].get<double>(), 0.0);
+            EXPECT_EQ(run["error_curve"].size(), 7u); // 4k .. 256k
+        }
+        if (m == "roam" || m == "quadtree") {
+            EXPECT_GT(run["depth_within_3pct"].get<double>(), 0.5) << m;
+            EXPECT_GT(run["triangles"].get<long long>(), 0) << m;
+        }
+    }
+    const RunResult md = run_overflight("bench demo --demo-size 65 --markdown --size 64x36 --frames 1 "
+                                        "--methods voxel,voxel+present,voxel+objects,blocks");
+    ASSERT_EQ(md.exit_code, 0) << md.err;
+    EXPECT_NE(md.out.find("Szenberg Table 1"), std::string::npos) << md.out;
+    EXPECT_NE(md.out.find("Szenberg Table 2"), std::string::npos) << md.out;
+}
+
+TEST(RenderCli, EveryMethodWritesImageDepthAndStats) {
+    ScratchDir dir;
+    for (const char* m : {"voxel", "voxel-literal", "raymarch", "mesh", "points", "top-faces", "front-faces",
+                          "segments", "blocks", "roam", "quadtree"}) {
+        const std::string png = dir / (std::string(m) + ".png"), tif = dir / (std::string(m) + ".tif");
+        const RunResult r = run_overflight("render demo --demo-size 129 --size 64x36 --method " + std::string(m) +
+                                           " -o '" + png + "' --depth '" + tif + "' --stats --triangles 5000 --error 2");
+        ASSERT_EQ(r.exit_code, 0) << m << ": " << r.err;
+        EXPECT_TRUE(std::filesystem::exists(png)) << m;
+        EXPECT_TRUE(std::filesystem::exists(tif)) << m;
+        const auto j = nlohmann::json::parse(r.out);
+        EXPECT_EQ(j["method"], m);
+        EXPECT_TRUE(j["ms"].contains("render")) << m;
+        if (std::string(m) == "roam") {
+            EXPECT_LE(j["triangles"].get<long long>(), 5000);
+            EXPECT_GE(j["triangles"].get<long long>(), 4998);
+            for (const char* k : {"tessellate", "draw"}) EXPECT_TRUE(j["ms"].contains(k)) << k;
+            EXPECT_TRUE(j.contains("max_error_px") && j.contains("mean_error_px"));
+        }
+        if (std::string(m) == "quadtree") {
+            EXPECT_EQ(j["error_px"], 2.0);
+            for (const char* k : {"tiles_visible", "tiles_culled", "tiles_loaded"}) EXPECT_TRUE(j.contains(k)) << k;
+        }
+    }
+    const RunResult bad = run_overflight("render demo --demo-size 65 -o '" + dir / "x.png" + "' --method roam --triangles 1");
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_EQ(bad.err.rfind("overflight: --triangles:", 0), 0u) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+// A big red box placed by --scene in front of the camera shows in the
+// composite and in the mesh image alike.
+TEST(RenderCli, SceneObjectsAppearOverEveryMethod) {
+    ScratchDir dir;
+    {
+        std::ofstream f(dir / "scene.toml");
+        f << "[[object]]\nkind = \"box\"\nx = 1280.0\nz = 1300.0\nwidth = 120.0\nheight = 2500.0\n"
+             "depth = 120.0\ncolor = [255, 0, 0]\n";
+    }
+    // The box's pixels: lit and fogged red, far from any terrain color.
+    auto red_mask = [](const ColorImage& img) {
+        std::vector<bool> mask(img.pixels.size());
+        for (std::size_t i = 0; i < mask.size(); ++i) {
+            const Rgb8 p = img.pixels[i];
+            mask[i] = p.r >= p.g + 35 && p.r >= p.b + 30;
+        }
+        return mask;
+    };
+    std::vector<bool> voxel_mask;
+    for (const char* m : {"voxel", "mesh", "roam", "quadtree"}) {
+        const std::string png = dir / (std::string(m) + ".png");
+        const RunResult r = run_overflight("render demo --demo-size 257 --size 96x54 --method " + std::string(m) +
+                                           " -o '" + png + "' --eye 1280,1700,2100 --heading 180 --pitch -30 --scene '" +
+                                           dir / "scene.toml" + "' --stats");
+        ASSERT_EQ(r.exit_code, 0) << m << ": " << r.err;
+        EXPECT_GE(nlohmann::json::parse(r.out)["object_triangles"].get<long long>(), 12) << m;
+        const std::vector<bool> mask = red_mask(read_png(png));
+        const long long red = std::count(mask.begin(), mask.end(), true);
+        EXPECT_GT(red, 40) << m;
+        if (voxel_mask.empty()) {
+            voxel_mask = mask;
+            continue;
+        }
+        long long both = 0, either = 0;
+        for (std::size_t i = 0; i < mask.size(); ++i) {
+            both += mask[i] && voxel_mask[i];
+            either += mask[i] || voxel_mask[i];
+        }
+        EXPECT_GE(double(both) / double(either), 0.9) << m << " vs voxel: " << both << " of " << either;
+    }
+    const RunResult bad = run_overflight("render demo --demo-size 65 -o '" + dir / "y.png" + "' --scene '" +
+                                         dir / "missing.toml" + "'");
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.err.find("missing.toml"), std::string::npos) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1);
+    EXPECT_FALSE(std::filesystem::exists(dir / "y.png"));
+}
+
+TEST(BenchCli, MarkdownTable) {
+    const RunResult r = run_overflight("bench demo --demo-size 33 --markdown --size 16x8 --frames 1 --methods voxel");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("| voxel |"), std::string::npos) << r.out;
+    const RunResult bad = run_overflight("bench demo --demo-size 33 --frames 0");
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_EQ(bad.err.rfind("overflight: --frames:", 0), 0u) << bad.err;
+}
