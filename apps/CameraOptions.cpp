@@ -86,15 +86,17 @@ Camera default_camera(const DataSet& data, int width, int height) {
     cam.near = 1.0;
     cam.far = std::hypot(t.width(), t.depth()) * 1.05;
     if (data.start.given && t.contains(float(data.start.x), float(data.start.z))) {
-        // A chase view: behind the vehicle along its heading, above the ground.
+        // An aerial view over the vehicle's start and the objects placed around
+        // it: 150 cells behind it along its heading, above the relief.
         cam.heading = data.start.heading;
+        cam.pitch = -14;
         const glm::dvec3 F = cam.forward();
-        const double back = 30.0 * t.h_scale();
+        const double back = 150.0 * t.h_scale();
         const double x = std::clamp(data.start.x - back * F.x, 0.0, double(t.width()));
         const double z = std::clamp(data.start.z - back * F.z, 0.0, double(t.depth()));
         const double ground = std::max(t.height_bilinear(float(x), float(z)), t.height_bilinear(float(data.start.x), float(data.start.z)));
         // High enough to look over the relief ahead (an island's start is on its coast).
-        cam.eye = {x, std::max(ground + 15.0 * t.h_scale(), double(t.min_height()) + 0.8 * relief), z};
+        cam.eye = {x, std::max(ground + 15.0 * t.h_scale(), double(t.min_height()) + 0.9 * relief), z};
     } else {
         // Above the south edge, looking north across the terrain.
         cam.heading = 180;

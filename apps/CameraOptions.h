@@ -30,9 +30,10 @@ struct CameraArgs {
 void add_camera_options(CLI::App& cmd, CameraArgs& args);
 
 // The overview a user gets without camera options: from the vehicle's start
-// (behind it along its heading, at 80 % of the relief) when the data set has one,
-// else above the terrain's south edge looking north across it; pitched down
-// 12 degrees, far enough to see the whole terrain.
+// (150 cells behind it along its heading, at 90 % of the relief, pitched down
+// 14 degrees) when the data set has one, else above the terrain's south edge
+// looking north across it, pitched down 12 degrees; far enough to see the
+// whole terrain.
 Camera default_camera(const DataSet& data, int width, int height);
 
 // The camera of `args` for `data` (default size when --size is absent),

@@ -95,6 +95,13 @@ const nlohmann::json* find_run(const nlohmann::json& runs, const std::string& me
     return nullptr;
 }
 
+template <class T>
+std::string fmt(const char* format, T value) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, format, value);
+    return buf;
+}
+
 double step_ms(const nlohmann::json* run, const char* step) {
     return run && run->contains("steps_ms") ? (*run)["steps_ms"].value(step, 0.0) : 0.0;
 }
@@ -112,12 +119,10 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
     for (const auto& r : runs) {
         const double med = r["ms_median"].get<double>();
         std::printf("| %s | %.2f | %.2f | %.2f | %s | %s | %s |\n", r["method"].get<std::string>().c_str(), med,
-                    1000.0 / med, med / base,
-                    r.contains("triangles") ? std::to_string(r["triangles"].get<long long>()).c_str() : "-",
-                    r.contains("ns_per_sample") ? std::to_string(r["ns_per_sample"].get<double>()).c_str() : "-",
-                    r.contains("depth_within_3pct")
-                        ? (std::to_string(100.0 * r["depth_within_3pct"].get<double>()) + " %").c_str()
-                        : "-");
+                    1000.0 / med, med / base, r.contains("triangles") ? fmt("%lld", r["triangles"].get<long long>()).c_str() : "-",
+                    r.contains("ns_per_sample") ? fmt("%.2f", r["ns_per_sample"].get<double>()).c_str() : "-",
+                    r.contains("depth_within_3pct") ? fmt("%.2f %%", 100.0 * r["depth_within_3pct"].get<double>()).c_str()
+                                                    : "-");
     }
     const nlohmann::json* with = find_run(runs, "voxel+objects");
     const nlohmann::json* without = find_run(runs, "voxel+present");
@@ -162,7 +167,7 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
         }
         const double med = (*r)["ms_median"].get<double>();
         std::printf("| %s | %.3f | %s | %s |\n", row.label, 1000.0 / med, row.paper,
-                    with ? std::to_string(med / (*with)["ms_median"].get<double>()).c_str() : "-");
+                    with ? fmt("%.1f", med / (*with)["ms_median"].get<double>()).c_str() : "-");
     }
     if (const nlohmann::json* roam = find_run(runs, "roam"); roam && roam->contains("error_curve")) {
         std::printf("\nROAM: %.2f M triangles/s tessellated; error versus budget\n\n"

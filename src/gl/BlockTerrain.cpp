@@ -61,14 +61,6 @@ void main() {
 }
 )";
 
-const char* const kLitFs = R"(
-in vec3 v_world;
-in vec3 v_normal;
-in vec3 v_color;
-out vec4 frag;
-void main() { frag = vec4(shade(v_color, v_normal, v_world), 1.0); }
-)";
-
 } // namespace
 
 const char* to_string(BlockMethod m) {
@@ -98,7 +90,7 @@ BlockTerrain::BlockTerrain(const Terrain& t) : rows_(t.rows()), cols_(t.cols()) 
     for (int m = 0; m < 5; ++m) {
         const std::string src = "#define METHOD " + std::to_string(m) + "\n#define VERTS " +
                                 std::to_string(kVerticesPerSample[m]) + "\n" + kBlockVs;
-        programs_[std::size_t(m)] = make_program(to_string(BlockMethod(m)), src.c_str(), kLitFs);
+        programs_[std::size_t(m)] = make_program(to_string(BlockMethod(m)), src.c_str(), kLitFragmentGlsl);
     }
 }
 

@@ -18,6 +18,14 @@ Texture make_texture(GLenum target) { GLuint id = 0; glCreateTextures(target, 1,
 Framebuffer make_framebuffer() { GLuint id = 0; glCreateFramebuffers(1, &id); return Framebuffer(id); }
 VertexArray make_vertex_array() { GLuint id = 0; glCreateVertexArrays(1, &id); return VertexArray(id); }
 
+const char* const kLitFragmentGlsl = R"(
+in vec3 v_world;
+in vec3 v_normal;
+in vec3 v_color;
+out vec4 frag;
+void main() { frag = vec4(shade(v_color, v_normal, v_world), 1.0); }
+)";
+
 const char* const kFrameGlsl = R"(
 // One uniform block for the frame (binding 0), filled by FrameUniforms.
 layout(std140, binding = 0) uniform Frame {

@@ -52,4 +52,8 @@ Program make_program(const char* name, const char* vertex, const char* fragment)
 // ambient and GL_EXP fog. Prepended to each shader after "#version 450 core".
 extern const char* const kFrameGlsl;
 
+// The fragment shader of every lit terrain program: shade() of the
+// interpolated world position, normal and color (v_world, v_normal, v_color).
+extern const char* const kLitFragmentGlsl;
+
 } // namespace overflight::gl

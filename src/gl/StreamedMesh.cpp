@@ -25,14 +25,6 @@ void main() {
 }
 )";
 
-const char* const kLitFs = R"(
-in vec3 v_world;
-in vec3 v_normal;
-in vec3 v_color;
-out vec4 frag;
-void main() { frag = vec4(shade(v_color, v_normal, v_world), 1.0); }
-)";
-
 const char* const kLineVs = R"(
 layout(location = 0) in vec3 position;
 layout(location = 2) in vec3 color;
@@ -56,7 +48,7 @@ void main() { frag = vec4(fogged(v_color, v_world), 1.0); }
 
 StreamedMesh::StreamedMesh()
     : positions_(make_buffer()), normals_(make_buffer()), colors_(make_buffer()), indices_(make_buffer()),
-      vao_(make_vertex_array()), program_(make_program("streamed-mesh", kMeshVs, kLitFs)) {
+      vao_(make_vertex_array()), program_(make_program("streamed-mesh", kMeshVs, kLitFragmentGlsl)) {
     glEnableVertexArrayAttrib(vao_.get(), 0);
     glVertexArrayAttribFormat(vao_.get(), 0, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(vao_.get(), 0, 0);

@@ -34,14 +34,6 @@ void main() {
 }
 )";
 
-const char* const kLitFs = R"(
-in vec3 v_world;
-in vec3 v_normal;
-in vec3 v_color;
-out vec4 frag;
-void main() { frag = vec4(shade(v_color, v_normal, v_world), 1.0); }
-)";
-
 struct PackedVertex {
     float height;
     std::uint32_t normal; // GL_INT_2_10_10_10_REV, signed normalised
@@ -141,7 +133,7 @@ TerrainMesh::TerrainMesh(const Terrain& t) : h_scale_(t.h_scale()) {
     glVertexArrayAttribFormat(vao_.get(), 2, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(PackedVertex, color));
     for (GLuint a = 0; a < 3; ++a) glVertexArrayAttribBinding(vao_.get(), a, 0);
 
-    program_ = make_program("terrain-mesh", kMeshVs, kLitFs);
+    program_ = make_program("terrain-mesh", kMeshVs, kLitFragmentGlsl);
     chunk_loc_ = glGetUniformLocation(program_.get(), "chunk");
 }
 
