@@ -5,16 +5,21 @@
 // hovercraft (gl/FlightWindow). With --frames: an unattended run of N frames
 // with scripted keys (FROM-TO in frames). With --replay: the recorded cameras
 // rendered headless to DIR/frame_00000.png ... (and to a video through ffmpeg).
-// Prints one CSV line per method used: method,frames,fps,triangles_per_frame.
+// Methods (gl/FlightMethods.h, Tab order): mesh, voxel, roam, quadtree.
+// Prints one CSV line per method used:
+//   method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step
+// the last column as "step:ms;step:ms;..." (mean over the timed frames).
 #include "Commands.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
+#include "gl/FlightMethods.h"
 #include "gl/FlightWindow.h"
 #include "io/FlightRecordFile.h"
 #include "io/ImageWriters.h"
 #include "io/SceneFile.h"
 #include "sim/KeyScript.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -25,25 +30,6 @@
 namespace overflight::app {
 
 namespace {
-
-// The terrain methods the window offers, in Tab order. A method is an entry
-// here: its name and how to build it in the current GL context.
-struct MethodEntry {
-    const char* name;
-    std::unique_ptr<gl::FlightMethod> (*make)(const DataSet&);
-};
-const std::vector<MethodEntry>& method_table() {
-    static const std::vector<MethodEntry> table = {
-        {"mesh", &gl::make_mesh_flight_method},
-    };
-    return table;
-}
-
-std::unique_ptr<gl::FlightMethod> make_method(const std::string& name, const DataSet& data) {
-    for (const MethodEntry& e : method_table())
-        if (name == e.name) return e.make(data);
-    return nullptr;
-}
 
 struct FlyOptions {
     TerrainArgs terrain;
@@ -63,10 +49,11 @@ void parse_size(const std::string& s, int& w, int& h) {
 }
 
 void print_stats(const std::vector<gl::FlightMethodStats>& stats) {
-    std::printf("method,frames,fps,triangles_per_frame\n");
+    std::printf("method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step\n");
     for (const gl::FlightMethodStats& s : stats)
-        std::printf("%s,%lld,%.2f,%lld\n", s.method.c_str(), s.frames, s.fps(),
-                    s.frames ? s.triangles / s.frames : 0);
+        std::printf("%s,%lld,%.2f,%lld,%lld,%s\n", s.method.c_str(), s.frames, s.fps(),
+                    s.frames ? s.triangles / s.frames : 0, s.frames ? s.object_triangles / s.frames : 0,
+                    s.steps_text().c_str());
 }
 
 std::string frame_name(long long i) {
@@ -99,7 +86,7 @@ void run_replay(const FlyOptions& o, const DataSet& data) {
     long long index = 0;
     FlightRecord rendered;
     const gl::FlightMethodStats stats = gl::render_flight_record(
-        data, record, o.frames, o.method, w, h, o.fov, make_method, [&](const ColorImage& image, long long) {
+        data, record, o.frames, o.method, w, h, o.fov, gl::make_flight_method, [&](const ColorImage& image, long long) {
             write_png((std::filesystem::path(o.out) / frame_name(index)).string(), image);
             rendered.frames.push_back(record.frames[std::size_t(index)]);
             ++index;
@@ -117,12 +104,11 @@ void run_fly(const FlyOptions& o) {
         throw Error("--out", "--out and --video render a recorded flight: add --replay path.csv");
     if (!o.screenshot.empty() && o.frames == 0)
         throw Error("--screenshot", "needs --frames N (interactively, P saves a screenshot)");
-    bool known = false;
-    for (const MethodEntry& e : method_table()) known |= o.method == e.name;
-    if (!known) {
-        std::string names;
-        for (const MethodEntry& e : method_table()) names += std::string(names.empty() ? "" : ", ") + e.name;
-        throw Error("--method", "'" + o.method + "' is not available (available: " + names + ")");
+    const std::vector<std::string>& names = gl::flight_method_names();
+    if (std::find(names.begin(), names.end(), o.method) == names.end()) {
+        std::string list;
+        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+        throw Error("--method", "'" + o.method + "' is not available (available: " + list + ")");
     }
     std::vector<ScriptedPress> presses;
     for (const std::string& p : o.presses) presses.push_back(parse_press(p));
@@ -133,8 +119,7 @@ void run_fly(const FlyOptions& o) {
 
     gl::FlightWindowOptions wo;
     parse_size(o.size, wo.width, wo.height);
-    wo.methods.clear();
-    for (const MethodEntry& e : method_table()) wo.methods.push_back(e.name);
+    wo.methods = names;
     wo.method = o.method;
     wo.fov = o.fov;
     wo.frames = o.frames;
@@ -144,7 +129,7 @@ void run_fly(const FlyOptions& o) {
     wo.start = data.start;
     const std::filesystem::path shot_base = o.screenshot.empty() ? std::filesystem::path("overflight.png")
                                                                  : std::filesystem::path(o.screenshot);
-    const gl::FlightResult result = gl::run_flight_window(data, wo, make_method, [&](const ColorImage& image, int index) {
+    const gl::ScreenshotSink save = [&](const ColorImage& image, int index) {
         if (index < 0) {
             if (!o.screenshot.empty()) write_png(o.screenshot, image);
             return;
@@ -156,7 +141,8 @@ void run_fly(const FlyOptions& o) {
         p.replace_filename(shot_base.stem().string() + suffix + ".png");
         write_png(p.string(), image);
         std::fprintf(stderr, "overflight: saved %s\n", p.string().c_str());
-    });
+    };
+    const gl::FlightResult result = gl::run_flight_window(data, wo, gl::make_flight_method, save);
     if (!o.record.empty()) write_flight_record(o.record, result.record);
     print_stats(result.per_method);
 }
@@ -168,7 +154,10 @@ void add_fly_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("fly", "Fly the hovercraft over a terrain in a window");
     add_terrain_options(*sub, o->terrain);
     sub->add_option("--scene", o->scene, "Scene TOML with objects to add");
-    sub->add_option("--method", o->method, "Terrain method shown first (Tab cycles): mesh");
+    sub->add_option("--method", o->method,
+                    "Terrain method shown first (Tab cycles mesh -> voxel -> roam -> quadtree); with --replay, "
+                    "the one that renders")
+        ->capture_default_str();
     sub->add_option("--record", o->record, "Write the flight (per-frame camera and keys) as CSV");
     sub->add_option("--replay", o->replay, "Render a recorded flight headless instead of flying");
     sub->add_option("--out", o->out, "Folder for the replayed frames (frame_00000.png, ...)");

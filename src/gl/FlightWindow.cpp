@@ -1,12 +1,12 @@
 #include "gl/FlightWindow.h"
 
 #include "core/Error.h"
-#include "gl/FrameUniforms.h"
+#include "gl/FlightMethods.h"
+#include "gl/FlightRenderer.h"
+#include "gl/FlightTimer.h"
 #include "gl/GlContext.h"
 #include "gl/Hud.h"
 #include "gl/RenderTarget.h"
-#include "gl/SkyPass.h"
-#include "gl/TerrainMesh.h"
 #include "sim/ChaseCamera.h"
 #include "sim/FixedStepClock.h"
 #include "sim/Hovercraft.h"
@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 
 namespace overflight::gl {
@@ -29,33 +30,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-// `mesh`: the full-resolution triangulation with sky, sun and fog.
-class MeshFlightMethod final : public FlightMethod {
-public:
-    explicit MeshFlightMethod(const DataSet& data) : terrain_(data.terrain), mesh_(data.terrain) {}
-    const char* name() const override { return "mesh"; }
-    long long draw(const FlightView& view) override {
-        frame_.update(view.camera, view.environment, terrain_);
-        frame_.bind();
-        glClearDepth(1.0);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        sky_.draw();
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        if (view.wireframe) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-        const glm::dmat4 clip = view.camera.projection_matrix() * view.camera.view_matrix();
-        const TerrainMesh::DrawStats s = mesh_.draw(clip);
-        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-        return s.triangles;
-    }
-
-private:
-    const Terrain& terrain_;
-    FrameUniforms frame_;
-    SkyPass sky_;
-    TerrainMesh mesh_;
-};
 
 // Keys and one-shot commands gathered from GLFW events between frames.
 struct InputState {
@@ -109,12 +83,15 @@ void setup_camera(Camera& cam, const Terrain& t, double fov) {
 }
 
 // Chase distances grow with the grid spacing: on a 10 m or 90 m grid the
-// paper's few-metre offsets would fill the view with a single cell.
+// paper's few-metre offsets would fill the view with a single cell. The eye
+// stays low enough (above / behind = 0.2, about 11 degrees down) that the
+// vehicle is in the lower part of the view while the camera aims at the
+// look-ahead point (60 degrees horizontal fov at 16:9 sees 18 degrees down).
 ChaseParams chase_params(const Terrain& t) {
     ChaseParams p;
     const double hs = t.h_scale();
     p.behind = std::max(p.behind, 3.0 * hs);
-    p.above = std::max(p.above, 1.5 * hs);
+    p.above = std::max(p.above, 0.6 * hs);
     p.look_ahead = std::max(p.look_ahead, 8.0 * hs);
     return p;
 }
@@ -141,10 +118,8 @@ public:
     // The method at `index`, created on first use; nullptr if the factory
     // does not know it.
     FlightMethod* get(std::size_t index) {
-        if (!methods_[index]) {
-            methods_[index] = factory_ ? factory_(names_[index], data_) : nullptr;
-            if (!methods_[index] && names_[index] == "mesh") methods_[index] = make_mesh_flight_method(data_);
-        }
+        if (!methods_[index])
+            methods_[index] = factory_ ? factory_(names_[index], data_) : make_flight_method(names_[index], data_);
         return methods_[index].get();
     }
     std::size_t size() const { return names_.size(); }
@@ -164,17 +139,37 @@ FlightMethodStats& stats_for(std::vector<FlightMethodStats>& all, const std::str
     return all.back();
 }
 
+// Adds one frame's step times to a method's sums.
+void add_steps(FlightMethodStats& stats, const FlightSteps& steps) {
+    for (int i = 0; i < steps.count; ++i) {
+        const FlightStep& step = steps.step[std::size_t(i)];
+        auto it = std::find_if(stats.step_ms.begin(), stats.step_ms.end(),
+                               [&](const auto& entry) { return entry.first == step.name; });
+        if (it == stats.step_ms.end()) it = stats.step_ms.insert(stats.step_ms.end(), {step.name, 0.0});
+        it->second += step.ms;
+    }
+    ++stats.timed_frames;
+}
+
 } // namespace
 
-std::unique_ptr<FlightMethod> make_mesh_flight_method(const DataSet& data) {
-    return std::make_unique<MeshFlightMethod>(data);
+std::string FlightMethodStats::steps_text() const {
+    std::string text;
+    for (const auto& [name, sum] : step_ms) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%s%s:%.2f", text.empty() ? "" : ";", name.c_str(),
+                      timed_frames ? sum / double(timed_frames) : 0.0);
+        text += buf;
+    }
+    return text;
 }
 
 FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& options,
                                const FlightMethodFactory& factory, const ScreenshotSink& screenshot) {
     const Terrain& terrain = data.terrain;
     std::vector<std::string> names = options.methods;
-    if (std::find(names.begin(), names.end(), options.method) == names.end()) names.insert(names.begin(), options.method);
+    if (std::find(names.begin(), names.end(), options.method) == names.end())
+        names.insert(names.begin(), options.method);
     std::size_t current = std::size_t(std::find(names.begin(), names.end(), options.method) - names.begin());
 
     // The vehicle first, so a bad start fails before a window flashes up.
@@ -194,6 +189,7 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
 
     MethodSet methods(data, factory, names);
     if (!methods.get(current)) throw Error("--method", "'" + names[current] + "' is not available in this build");
+    FlightRenderer renderer(data);
 
     ChaseCamera chase(chase_params(terrain));
     Camera cam;
@@ -208,7 +204,15 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
     ColorImage shot;
     int shots = 0;
     double sim_time = 0, fps = 0, frame_ms = 0, step_ms = 0;
-    long long triangles = 0;
+    FlightFrameCounts counts;
+    // Step timings arrive a few frames late (GL queries); the HUD shows the
+    // latest, the per-method statistics sum them.
+    FlightSteps latest_steps;
+    FlightStepTimer timer([&](int tag, const FlightSteps& steps) {
+        latest_steps = steps;
+        add_steps(stats_for(result.per_method, methods.name(std::size_t(tag))), steps);
+    });
+    RenderTarget window_target = RenderTarget::default_framebuffer(options.width, options.height);
     auto last = Clock::now();
 
     for (long long frame = 0; !unattended || frame < options.frames; ++frame) {
@@ -279,21 +283,27 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
         if (fb_w > 0 && fb_h > 0) { // minimised: keep simulating, draw nothing
             cam.width = fb_w;
             cam.height = fb_h;
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            glViewport(0, 0, fb_w, fb_h);
+            // Kept between frames: its full-screen copy pass is built once.
+            if (window_target.width() != fb_w || window_target.height() != fb_h)
+                window_target = RenderTarget::default_framebuffer(fb_w, fb_h);
             const Environment env = view_environment(data.environment, terrain, fog, lighting);
             FlightMethod* method = methods.get(current);
-            triangles = method->draw(FlightView{cam, env, wireframe});
+            const HovercraftState& s = hc.state();
+            timer.begin_frame(int(current));
+            counts = renderer.draw(*method, cam, env, window_target, timer, VehiclePose{s.x, s.z, s.heading},
+                                   wireframe);
             // Screenshots are taken before the HUD so they match a replay.
             const bool last_frame = unattended && frame + 1 == options.frames;
             if ((take_shot || last_frame) && screenshot) {
-                RenderTarget::default_framebuffer(fb_w, fb_h).read_color(shot);
+                window_target.read_color(shot);
                 if (take_shot) screenshot(shot, shots++);
                 if (last_frame) screenshot(shot, -1);
             }
-            const HovercraftState& s = hc.state();
-            hud.draw(HudInfo{fps, frame_ms, step_ms, triangles, method->name(), method->detail(),
-                             glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, fog, lighting, wireframe});
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glViewport(0, 0, fb_w, fb_h);
+            hud.draw(HudInfo{fps, frame_ms, step_ms, latest_steps, counts.terrain_triangles, counts.object_triangles,
+                             method->name(), method->detail(), glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, fog,
+                             lighting, wireframe});
             window.swap_buffers();
         }
 
@@ -317,8 +327,10 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
         FlightMethodStats& st = stats_for(result.per_method, methods.name(current));
         ++st.frames;
         st.seconds += frame_s;
-        st.triangles += triangles;
+        st.triangles += counts.terrain_triangles;
+        st.object_triangles += counts.object_triangles;
     }
+    timer.flush();
     return result;
 }
 
@@ -328,9 +340,11 @@ FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& 
                                        const std::function<void(const ColorImage&, long long frame)>& sink) {
     HeadlessContext context;
     RenderTarget target(width, height);
-    std::unique_ptr<FlightMethod> method = factory ? factory(method_name, data) : nullptr;
-    if (!method && method_name == "mesh") method = make_mesh_flight_method(data);
+    std::unique_ptr<FlightMethod> method = factory ? factory(method_name, data) : make_flight_method(method_name, data);
     if (!method) throw Error("--method", "'" + method_name + "' is not available in this build");
+    FlightRenderer renderer(data);
+    FlightMethodStats stats{method_name};
+    FlightStepTimer timer([&](int, const FlightSteps& steps) { add_steps(stats, steps); });
 
     Camera cam;
     setup_camera(cam, data.terrain, fov);
@@ -339,7 +353,6 @@ FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& 
     const Environment env = view_environment(data.environment, data.terrain, data.environment.fog_density > 0, true);
     const std::size_t n = frames > 0 ? std::min<std::size_t>(std::size_t(frames), record.frames.size())
                                      : record.frames.size();
-    FlightMethodStats stats{method_name};
     ColorImage image;
     for (std::size_t i = 0; i < n; ++i) {
         const FlightFrame& f = record.frames[i];
@@ -347,14 +360,17 @@ FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& 
         cam.eye = f.eye;
         cam.heading = f.heading;
         cam.pitch = f.pitch;
-        cam.validate();
-        target.bind();
-        stats.triangles += method->draw(FlightView{cam, env, false});
+        timer.begin_frame(0);
+        const FlightFrameCounts counts =
+            renderer.draw(*method, cam, env, target, timer, VehiclePose{f.x, f.z, f.vehicle_heading}, false);
         target.read_color(image);
         stats.seconds += seconds_since(t0);
+        stats.triangles += counts.terrain_triangles;
+        stats.object_triangles += counts.object_triangles;
         ++stats.frames;
         sink(image, f.frame);
     }
+    timer.flush();
     return stats;
 }
 

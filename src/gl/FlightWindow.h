@@ -10,6 +10,10 @@
 // 1 lighting, W wireframe, + / _ level of detail x / ÷ sqrt 2, Tab next
 // method (same camera), P screenshot, H HUD, q quit.
 //
+// Every frame (gl/FlightRenderer): the method's terrain for the chase camera,
+// then the data set's objects and the hovercraft with the Z-buffer; the HUD
+// (gl/Hud) shows fps and the ms of each step of the last timed frame.
+//
 // Time: the physics runs in fixed 10 ms steps drained from a FixedStepClock.
 // Interactive frames feed it wall-clock time; an unattended run (frames > 0)
 // feeds it exactly frame_time per frame, so a scripted flight (--press FROM-TO
@@ -20,52 +24,20 @@
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
+#include "gl/FlightMethod.h"
 #include "sim/FlightRecord.h"
 #include "sim/KeyScript.h"
 
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace overflight::gl {
 
-// What the window asks of a method each frame.
-struct FlightView {
-    const Camera& camera;       // width/height = the framebuffer being drawn
-    const Environment& environment; // with the fog / lighting toggles applied
-    bool wireframe = false;
-};
-
-// A terrain method the window can draw (mesh, voxel, roam, quadtree, ...).
-// Methods are created after the GL context exists and draw into the bound
-// framebuffer (viewport already set to camera.width x camera.height), sky and
-// objects included; they must not allocate per frame in steady state.
-class FlightMethod {
-public:
-    virtual ~FlightMethod() = default;
-    virtual const char* name() const = 0;
-    // Draws one frame; returns the triangles drawn (0 for methods without any).
-    virtual long long draw(const FlightView& view) = 0;
-    // Level of detail x factor (seed 003 "+": factor sqrt 2; "_": 1/sqrt 2):
-    // a larger triangle budget or a smaller screen error. Methods without a
-    // level of detail ignore it.
-    virtual void scale_detail(double /*factor*/) {}
-    // A short description of the current level of detail for the HUD ("" if none).
-    virtual std::string detail() const { return {}; }
-};
-
-// Builds the method named `name` for `data` in the current context; returns
-// nullptr for a name it does not know. Supplied by the caller (apps/cmd_fly.cpp)
-// so that methods from every layer can be offered without gl depending on them.
-using FlightMethodFactory = std::function<std::unique_ptr<FlightMethod>(const std::string& name, const DataSet& data)>;
-
-// The method the gl layer itself provides: `mesh`, the full-resolution
-// triangulation (TerrainMesh) with sky, sun and fog. Needs a current context.
-std::unique_ptr<FlightMethod> make_mesh_flight_method(const DataSet& data);
-
 struct FlightWindowOptions {
-    std::vector<std::string> methods{"mesh"}; // Tab cycles through these, in order
+    std::vector<std::string> methods{"mesh", "voxel", "roam", "quadtree"}; // Tab cycles through these, in order
     std::string method = "mesh";              // the first one shown
     int width = 1280, height = 720;           // initial window size (resizable)
     double fov = 60.0;
@@ -82,8 +54,15 @@ struct FlightMethodStats {
     std::string method;
     long long frames = 0;
     double seconds = 0;      // wall-clock time spent in those frames
-    long long triangles = 0; // sum over the frames
+    long long triangles = 0; // terrain triangles, sum over the frames
+    long long object_triangles = 0;
+    // Step times (FlightStepTimer), summed over the `timed_frames` frames
+    // whose timings arrived, in order of first appearance.
+    std::vector<std::pair<std::string, double>> step_ms;
+    long long timed_frames = 0;
     double fps() const { return seconds > 0 ? frames / seconds : 0; }
+    // "raycast:12.31;upload:0.84;..." (mean ms per frame of each step).
+    std::string steps_text() const;
 };
 
 struct FlightResult {
@@ -98,14 +77,16 @@ struct FlightResult {
 using ScreenshotSink = std::function<void(const ColorImage& image, int index)>;
 
 // Opens the window and runs until q, the window is closed, or `frames` frames
-// are done. Throws Error("window", ...) if no window can be opened and
-// Error("--method", ...) for a method the factory does not know.
+// are done. Methods come from `factory` (an empty one: make_flight_method of
+// FlightMethods.h). Throws Error("window", ...) if no window can be opened and
+// Error("--method", ...) for a first method the factory does not know.
 FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& options,
                                const FlightMethodFactory& factory, const ScreenshotSink& screenshot);
 
 // Renders the cameras of a recorded flight headless (EGL), one image per
 // frame, handing each to `sink` with its frame index; `frames` <= 0 means all.
-// Camera size width x height, the given fov. Returns per-method stats.
+// Camera size width x height, the given fov; the objects and the hovercraft at
+// its recorded position are drawn as in the window. Returns the method's stats.
 FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& record, long long frames,
                                        const std::string& method, int width, int height, double fov,
                                        const FlightMethodFactory& factory,

@@ -36,9 +36,13 @@ void Hud::draw(const HudInfo& info) {
                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                          ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs);
         ImGui::Text("%.1f fps  %.2f ms/frame", info.fps, info.frame_ms);
-        ImGui::Text("physics %.4f ms/step", info.step_ms);
         ImGui::Text("method %s%s%s", info.method.c_str(), info.detail.empty() ? "" : "  ", info.detail.c_str());
-        ImGui::Text("triangles %lld", info.triangles);
+        for (int i = 0; i < info.steps.count; ++i) {
+            const FlightStep& s = info.steps.step[std::size_t(i)];
+            ImGui::Text("  %-10s %7.2f ms%s", s.name, s.ms, s.gl ? " (gl)" : "");
+        }
+        ImGui::Text("  %-10s %7.4f ms/step", "physics", info.step_ms);
+        ImGui::Text("triangles %lld  objects %lld", info.triangles, info.object_triangles);
         ImGui::Text("position %.1f, %.1f, %.1f", info.position.x, info.position.y, info.position.z);
         ImGui::Text("speed %.2f m/s  heading %.1f", info.speed, info.heading);
         ImGui::Text("fog %s  light %s  wire %s", info.fog ? "on" : "off", info.lighting ? "on" : "off",

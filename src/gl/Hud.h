@@ -1,8 +1,12 @@
 #pragma once
-// The heads-up display of the `fly` window (issue 7): fps, ms per frame and per
-// physics step, triangles, method and level of detail, vehicle position, speed
-// and heading, and the fog / lighting / wireframe toggles of seed 003 sec. 3.1.
-// Drawn with Dear ImGui (Debian's libimgui + its GLFW and OpenGL 3 backends).
+// The heads-up display of the `fly` window (issue 7): fps, ms per frame, per
+// rendering step (ray cast or tessellate, uploads, objects: FlightStepTimer)
+// and per physics step, triangles, method and level of detail, vehicle
+// position, speed and heading, and the fog / lighting / wireframe toggles of
+// seed 003 sec. 3.1. Drawn with Dear ImGui (Debian's libimgui + its GLFW and
+// OpenGL 3 backends).
+#include "gl/FlightTimer.h"
+
 #include <glm/vec3.hpp>
 
 #include <string>
@@ -15,7 +19,9 @@ struct HudInfo {
     double fps = 0;
     double frame_ms = 0;        // wall-clock ms of the last frame
     double step_ms = 0;         // ms per 10 ms physics step (CPU time of the simulation)
-    long long triangles = 0;
+    FlightSteps steps;          // rendering steps of the latest timed frame
+    long long triangles = 0;    // terrain
+    long long object_triangles = 0;
     std::string method;
     std::string detail;         // method's level of detail, may be empty
     glm::dvec3 position{0.0};   // vehicle, world

@@ -13,7 +13,6 @@
 #include <fstream>
 #include <set>
 
-using namespace overflight;
 using namespace overflight::test;
 
 TEST(RenderVoxelCli, WritesPngDepthAndStats) {
@@ -182,11 +181,11 @@ TEST(RenderCli, SceneObjectsAppearOverEveryMethod) {
              "depth = 120.0\ncolor = [255, 0, 0]\n";
     }
     // The box's pixels: lit and fogged red, far from any terrain color.
-    auto red_mask = [](const ColorImage& img) {
-        std::vector<bool> mask(img.pixels.size());
+    auto red_mask = [](const Png& img) {
+        std::vector<bool> mask(img.rgb.size() / 3);
         for (std::size_t i = 0; i < mask.size(); ++i) {
-            const Rgb8 p = img.pixels[i];
-            mask[i] = p.r >= p.g + 35 && p.r >= p.b + 30;
+            const unsigned char* p = &img.rgb[3 * i];
+            mask[i] = p[0] >= p[1] + 35 && p[0] >= p[2] + 30;
         }
         return mask;
     };

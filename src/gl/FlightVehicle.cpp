@@ -1,0 +1,53 @@
+// Based on: seed 003 sec. 3 (the vehicle and its chase camera) and Szenberg et
+// al. 1997 sec. 5 (objects drawn with the Z-buffer over any terrain).
+#include "gl/FlightVehicle.h"
+
+#include "gl/ObjectGeometry.h"
+#include "sim/Hovercraft.h"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+
+namespace overflight::gl {
+
+FlightVehicle::FlightVehicle(const Terrain& terrain) : terrain_(terrain) {
+    Scene scene;
+    SceneObject v;
+    v.kind = ObjectKind::Vehicle;
+    v.y = 0.0;
+    v.width = kWidth;
+    v.height = kHeight;
+    v.depth = kLength;
+    v.color = Rgb8{215, 75, 35};
+    scene.objects.push_back(v);
+    model_ = build_object_geometry(scene, terrain).triangles;
+    placed_ = model_;
+}
+
+long long FlightVehicle::draw(double x, double z, double heading) {
+    // The ground under the craft's four sides gives its slope along and across
+    // the heading; the body is rotated onto that plane.
+    const double h = glm::radians(heading);
+    const glm::dvec3 fwd{std::sin(h), 0, std::cos(h)}, side{std::cos(h), 0, -std::sin(h)};
+    const auto ground = [&](const glm::dvec3& offset) { return ground_height(terrain_, x + offset.x, z + offset.z); };
+    const double front = ground(0.5 * kLength * fwd), back = ground(-0.5 * kLength * fwd);
+    const double left = ground(0.5 * kWidth * side), right = ground(-0.5 * kWidth * side);
+    const glm::dvec3 up{0, 1, 0};
+    const glm::dvec3 az = glm::normalize(fwd + up * ((front - back) / kLength));
+    const glm::dvec3 ax0 = glm::normalize(side + up * ((left - right) / kWidth));
+    const glm::dvec3 ay = glm::normalize(glm::cross(az, ax0));
+    const glm::dvec3 ax = glm::cross(ay, az);
+    const double centre = std::max(ground_height(terrain_, x, z), 0.25 * (front + back + left + right));
+    const glm::dvec3 origin{x, centre + kHover, z};
+    for (std::size_t i = 0; i < model_.positions.size(); ++i) {
+        const glm::dvec3 p(model_.positions[i]), n(model_.normals[i]);
+        placed_.positions[i] = glm::vec3(origin + p.x * ax + p.y * ay + p.z * az);
+        placed_.normals[i] = glm::vec3(n.x * ax + n.y * ay + n.z * az);
+    }
+    mesh_.upload(placed_);
+    return mesh_.draw();
+}
+
+} // namespace overflight::gl
