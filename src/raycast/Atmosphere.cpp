@@ -36,14 +36,19 @@ void FogTable::build(float density, float max_distance) {
     enabled_ = density > 0.0f && max_distance > 0.0f;
     table_.resize(std::size_t(kEntries) + 1);
     if (!enabled_) {
-        std::fill(table_.begin(), table_.end(), std::uint16_t(256));
+        std::fill(table_.begin(), table_.end(), std::uint32_t(256));
         inv_step_ = 0.0f;
         return;
     }
     const double step = double(max_distance) / kEntries;
     inv_step_ = float(1.0 / step);
     for (int i = 0; i <= kEntries; ++i)
-        table_[std::size_t(i)] = std::uint16_t(std::lround(256.0 * std::exp(-double(density) * step * i)));
+        table_[std::size_t(i)] = std::uint32_t(std::lround(256.0 * std::exp(-double(density) * step * i)));
+}
+
+void SkyTable::build(const Environment& env) {
+    table_.resize(kEntries);
+    for (int i = 0; i < kEntries; ++i) table_[std::size_t(i)] = pack_rgb(sky_color_from_sine(env, double(i) / (kEntries - 1)));
 }
 
 } // namespace overflight

@@ -45,7 +45,8 @@ Rgb8 apply_fog(const Environment& env, Rgb8 surface, double f);
 // once sized: the fast ray caster needs one fog factor per painted pixel and
 // exp() there would cost more than the ray casting itself. With 4096 entries
 // the factor is off by at most density*max_distance/8192 + 1/512, under one
-// color level for density * max_distance <= 8.
+// color level for density * max_distance <= 8. Entries are 32-bit so that a
+// vectorised loop can gather them.
 class FogTable {
 public:
     void build(float density, float max_distance);
@@ -56,12 +57,38 @@ public:
         return table_[std::size_t(x < float(kEntries) ? int(x) : kEntries)];
     }
 
+    // The table behind weight(), for loops that look it up themselves:
+    // weight(x) = entries()[min(int(x * inv_step() + 0.5), kEntries)].
+    const std::uint32_t* entries() const { return table_.data(); }
+    float inv_step() const { return inv_step_; }
+
     static constexpr int kEntries = 4096;
 
 private:
     bool enabled_ = false;
     float inv_step_ = 0.0f;
-    std::vector<std::uint16_t> table_;
+    std::vector<std::uint32_t> table_;
+};
+
+// The sky gradient tabulated over sin(elevation) in [0, 1], packed colors,
+// nearest entry (kEntries levels: finer than the 8-bit color steps).
+class SkyTable {
+public:
+    void build(const Environment& env);
+    // Sky color for the sine of a ray's elevation. Converted before it is
+    // clamped (|sine| <= 1 keeps the conversion in range), so that loops over
+    // it vectorise.
+    std::uint32_t color(float sine) const { return lookup(table_.data(), sine); }
+    static std::uint32_t lookup(const std::uint32_t* entries, float sine) {
+        const int x = int(sine * float(kEntries - 1) + 0.5f);
+        return entries[x < 0 ? 0 : (x > kEntries - 1 ? kEntries - 1 : x)];
+    }
+    const std::uint32_t* entries() const { return table_.data(); }
+
+    static constexpr int kEntries = 1024;
+
+private:
+    std::vector<std::uint32_t> table_;
 };
 
 // Per-channel blend towards the fog color with the surface weight a in 0..256.

@@ -22,10 +22,13 @@
 // near the eye, where a cell spans several pixels, block fronts and corners
 // can be missed; RaycastOptions::near_step_pixels narrows the slices there.
 //
-// Speed: columns are cast in blocks in parallel (oneTBB); each block is cast
-// column-major into a per-thread scratch and transposed into the row-major
-// images; every per-frame table and scratch buffer is reused across frames
-// (no allocation per frame once sizes are stable).
+// Speed: columns are cast in blocks in parallel (oneTBB). Within a column,
+// runs of slices that the max-height pyramid bounds below the current horizon
+// are skipped (SliceRunBound: exact, they would paint nothing). Each block is
+// cast into a per-thread scratch, row-major within the block, and resolved
+// (fog, sky, depth: ShearResolve) into the row-major images, one run of pixels
+// per image row; every per-frame table and scratch buffer is reused across
+// frames (no allocation per frame once sizes are stable).
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
@@ -46,7 +49,8 @@ namespace overflight {
 class FloatingHorizon {
 public:
     // Keeps references to terrain and env (they must outlive this object).
-    // The LOD pyramids are built on first use of --lod.
+    // Builds the max-height pyramid for run skipping (a third of the height
+    // field's size); the LOD pyramids are built on first use of --lod.
     FloatingHorizon(const Terrain& terrain, const Environment& env);
     ~FloatingHorizon();
 
@@ -74,32 +78,29 @@ private:
                          RaycastStats& stats);
     void cast_tilt_guedes(const Camera& camera, const RaycastOptions& options, ColorImage& color, DepthImage& depth,
                           RaycastStats& stats);
-    // Casts columns [c0, c1) into column-major buffers with `rows` entries per
-    // column; returns the samples visited. jend[c - c0] receives the painted count.
+    // Casts columns [c0, c1): pixel (row j, column c) of the unfogged sample
+    // color and of the slice index go to color/slice[(c - c0) * col_stride +
+    // j * row_stride]; jend[c - c0] receives the painted count. Returns the
+    // samples visited.
     long long cast_columns(const RaycastOptions& options, int c0, int c1, std::uint32_t* color, std::uint32_t* slice,
-                           int* jend) const;
-    long long cast_lanes(int c0, int n, std::uint32_t* color, std::uint32_t* slice, int* jend) const;
-    static constexpr int kLanes = 8;
+                           int* jend, std::ptrdiff_t col_stride, std::ptrdiff_t row_stride) const;
+    template <std::ptrdiff_t kStride> // row stride of the output
+    int cast_blocks_column(int c, std::uint32_t* color, std::uint32_t* slice, long long& visited) const;
     template <bool kBilinear, bool kVarying>
-    int cast_column(int c, std::uint32_t* color, std::uint32_t* slice, long long& visited) const;
-    void sky_table(const Environment& env);
-    std::uint32_t sky(float sine) const {
-        const float x = sine * float(kSkyEntries - 1) + 0.5f;
-        return sky_[std::size_t(x <= 0.0f ? 0 : (x >= float(kSkyEntries - 1) ? kSkyEntries - 1 : int(x)))];
-    }
-
-    static constexpr int kSkyEntries = 1024;
+    int cast_column(int c, std::uint32_t* color, std::uint32_t* slice, std::ptrdiff_t stride, long long& visited) const;
 
     const Terrain& terrain_;
     const Environment& env_;
     std::vector<std::uint32_t> colors_;      // packed sample colors, row-major
     std::unique_ptr<HeightPyramid> pyramid_; // --lod
+    HeightPyramid max_pyramid_;              // heights only: run skipping
     RayMarcher marcher_;                     // tilt pixels past the vertical
 
     // Per-frame tables (reused).
     double eye_gx_ = 0, eye_gz_ = 0, eye_y_ = 0;
     double fx_ = 0, fz_ = 0, rx_ = 0, rz_ = 0;   // F and R, XZ
     std::vector<double> slice_d_;      // view depth along F of slice k
+    std::vector<float> slice_df_;      // the same in float (fog distance)
     std::vector<float> slice_a_;       // v_scale / d_k
     std::vector<float> slice_b_;       // (y0 - eye_y) / d_k
     std::vector<float> slice_smax_;    // max over k' >= k of (max height - eye_y) / d_k'
@@ -115,7 +116,8 @@ private:
     std::vector<int> col_k0_, col_k1_; // slices inside the terrain
     int rows_cast_ = 0;
     bool uniform_slices_ = true;       // one cell apart: incremental stepping
-    std::vector<std::uint32_t> sky_;
+    bool skip_runs_ = true;            // RaycastOptions::skip_runs
+    SkyTable sky_;
     FogTable fog_;
     std::uint32_t fog_color_ = 0;
     struct BlockScratch {

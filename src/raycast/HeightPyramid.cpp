@@ -9,14 +9,15 @@
 
 namespace overflight {
 
-HeightPyramid::HeightPyramid(const Terrain& terrain, int max_level) {
+HeightPyramid::HeightPyramid(const Terrain& terrain, int max_level, bool with_colors)
+    : rows_(terrain.rows()), cols_(terrain.cols()) {
     int rows = terrain.rows(), cols = terrain.cols();
     for (int L = 1; L <= max_level && (rows > 1 || cols > 1); ++L) {
         Level next;
         next.rows = (rows + 1) / 2;
         next.cols = (cols + 1) / 2;
         next.heights.resize(std::size_t(next.rows) * std::size_t(next.cols));
-        next.colors.resize(next.heights.size());
+        if (with_colors) next.colors.resize(next.heights.size());
         const Level* prev = levels_.empty() ? nullptr : &levels_.back();
         auto height = [&](int i, int j) -> std::uint16_t {
             return prev ? prev->heights[std::size_t(i) * std::size_t(cols) + std::size_t(j)] : terrain.raw(i, j);
@@ -25,20 +26,24 @@ HeightPyramid::HeightPyramid(const Terrain& terrain, int max_level) {
             return prev ? prev->colors[std::size_t(i) * std::size_t(cols) + std::size_t(j)] : pack_rgb(terrain.color(i, j));
         };
         tbb::parallel_for(0, next.rows, [&](int I) {
+            const int i1 = std::min(2 * I + 2, rows);
             for (int J = 0; J < next.cols; ++J) {
+                const int j1 = std::min(2 * J + 2, cols);
+                const std::size_t k = std::size_t(I) * std::size_t(next.cols) + std::size_t(J);
                 std::uint16_t h = 0;
+                for (int i = 2 * I; i < i1; ++i)
+                    for (int j = 2 * J; j < j1; ++j) h = std::max(h, height(i, j));
+                next.heights[k] = h;
+                if (!with_colors) continue;
                 std::uint32_t r = 0, g = 0, b = 0, n = 0;
-                for (int i = 2 * I; i < std::min(2 * I + 2, rows); ++i)
-                    for (int j = 2 * J; j < std::min(2 * J + 2, cols); ++j) {
-                        h = std::max(h, height(i, j));
+                for (int i = 2 * I; i < i1; ++i)
+                    for (int j = 2 * J; j < j1; ++j) {
                         const std::uint32_t c = color(i, j);
                         r += c & 0xFF;
                         g += (c >> 8) & 0xFF;
                         b += (c >> 16) & 0xFF;
                         ++n;
                     }
-                const std::size_t k = std::size_t(I) * std::size_t(next.cols) + std::size_t(J);
-                next.heights[k] = h;
                 next.colors[k] = ((r + n / 2) / n) | (((g + n / 2) / n) << 8) | (((b + n / 2) / n) << 16);
             }
         });

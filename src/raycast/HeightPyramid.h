@@ -1,7 +1,9 @@
 #pragma once
-// Mip pyramids of a height field for the Floating Horizon's distance LOD:
-// heights by maximum (a coarse voxel is never lower than any sample it covers,
-// so distant silhouettes are never lost, only widened) and colors by mean.
+// Mip pyramids of a height field: heights by maximum (a coarse voxel is never
+// lower than any sample it covers) and, optionally, colors by mean. The
+// Floating Horizon uses the heights to skip runs of slices that cannot rise
+// above the horizon (exact: a bound, never a sample) and both for its distance
+// LOD (distant silhouettes are never lost, only widened).
 //
 // Based on: Szenberg 1997 sec. 8 (aliasing of distant samples) and the usual
 // max-mipmap of height-field ray casting; level L cell (I, J) covers samples
@@ -18,17 +20,21 @@ public:
     struct Level {
         int rows = 0, cols = 0;
         std::vector<std::uint16_t> heights; // max of the covered samples
-        std::vector<std::uint32_t> colors;  // mean color, packed 0x00BBGGRR
+        std::vector<std::uint32_t> colors;  // mean color, packed 0x00BBGGRR (empty without with_colors)
     };
 
     HeightPyramid() = default;
     // Builds levels 1..max_level (level 0 is the terrain itself), stopping at 1x1.
-    HeightPyramid(const Terrain& terrain, int max_level);
+    // Without with_colors the levels' colors stay empty.
+    HeightPyramid(const Terrain& terrain, int max_level, bool with_colors = true);
 
     int levels() const { return int(levels_.size()); } // coarse levels held (level L is levels_[L-1])
+    int rows() const { return rows_; }                 // level 0 (the terrain)
+    int cols() const { return cols_; }
     const Level& level(int L) const { return levels_[std::size_t(L - 1)]; }
 
 private:
+    int rows_ = 0, cols_ = 0;
     std::vector<Level> levels_;
 };
 

@@ -38,6 +38,10 @@ struct RaycastOptions {
     // Algorithm 1 still find the blocks' front faces and ridges within about a
     // pixel. 0 turns it off (every slice one cell apart, as in the paper).
     double near_step_pixels = 0.0;
+    // Skip runs of slices whose every sample the max-height pyramid proves to
+    // stay below the current horizon (one-cell slices, `blocks` surface). Exact:
+    // such runs paint nothing; off only to measure or test that.
+    bool skip_runs = true;
 };
 
 // What one frame cost, for --stats and `overflight bench`.
@@ -47,7 +51,7 @@ struct RaycastStats {
     double ms_resolve = 0;  // tilt: sky, depth, reprojection to the image (shear: 0, inside ms_cast)
     double ms_total = 0;
     long long samples = 0;         // columns x slices up to far (the size of the problem)
-    long long samples_visited = 0; // height samples actually read (clipping and early exit skip the rest)
+    long long samples_visited = 0; // height samples actually read (clipping, early exit and skipped runs spare the rest)
     long long pixels_painted = 0;  // terrain pixels
     int columns = 0;               // vertical planes cast (W for shear; more for tilt exact)
     int slices = 0;                // slices from near to far

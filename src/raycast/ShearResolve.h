@@ -1,0 +1,60 @@
+#pragma once
+// The resolve step of the Floating Horizon for the `shear` camera: turns what
+// Algorithm 1 painted into a block of columns (per pixel: the sample color and
+// the slice index) into image pixels with OpenGL window depth, fog and sky.
+//
+// Based on: Szenberg, Gattass, Carvalho 1997, sec. 5.2 (slices parallel to the
+// screen: every pixel painted from slice k has the window depth of the depth
+// vector entry k, eq. 7, Algorithm 2) and sec. 6 (the depth is stored with
+// every painted pixel so that Z-buffered objects composite on it); fog and sky
+// follow the conventions of Atmosphere.h that the GL renderers share.
+//
+// Layout: a block is kShearBlock adjacent image columns. Its scratch is
+// row-major, kShearBlock entries per row, rows counted bottom-up (the order in
+// which Algorithm 1 paints); the images are row-major, top-down.
+#include "core/Image.h"
+#include "raycast/Atmosphere.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace overflight {
+
+constexpr int kShearBlock = 32; // image columns per block
+
+// Per-frame tables, shared by all blocks.
+struct ShearResolveTables {
+    const float* row_m = nullptr;       // ray slope of row j (bottom-up), per unit of view depth
+    const float* slice_depth = nullptr; // window depth of slice k (eq. 7)
+    const float* slice_d = nullptr;     // view depth of slice k
+    const FogTable* fog = nullptr;
+    std::uint32_t fog_color = 0;        // 0x00BBGGRR
+    const std::uint32_t* sky = nullptr; // SkyTable::entries()
+};
+
+// One block as the cast left it.
+struct ShearBlock {
+    int n = 0;                 // image columns in the block (<= kShearBlock; the rest is padding)
+    float len2[kShearBlock];   // |F + a R|^2 of each column's plane (1 for padding)
+    int jend[kShearBlock];     // pixels painted, bottom-up (0 for padding)
+};
+
+// The kernel that computes the pixels (both give the same bits). Auto picks
+// the fastest the CPU runs; the others, for tests and measurements, must be
+// resolve_kernel_available().
+enum class ResolveKernel { Auto, Portable, Avx2 };
+bool resolve_kernel_available(ResolveKernel kernel);
+
+// Resolves rows [0, H) of a block. color/slice hold, at j * kShearBlock + i,
+// the unfogged sample color (0x00BBGGRR) and the slice index of pixel j
+// (bottom-up) of column i wherever j < jend[i]; other entries may hold
+// anything. Pixel j < jend[i] gets the color fogged at the eye distance
+// d_k |ray_j| and depth slice_depth[k]; the others get the sky color of their
+// ray's elevation and depth 1. The results are written to out_c/out_d (the
+// images at the block's first column, W pixels per row); color and slice are
+// overwritten on the way (final color, depth bits).
+void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int H, std::uint32_t* color,
+                         std::uint32_t* slice, Rgb8* out_c, float* out_d, std::size_t W,
+                         ResolveKernel kernel = ResolveKernel::Auto);
+
+} // namespace overflight

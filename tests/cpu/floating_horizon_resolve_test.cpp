@@ -1,0 +1,179 @@
+// The shear resolve (ShearResolve): what the cast painted becomes image pixels
+// with the slice's window depth (Szenberg eq. 7), fog and sky; the AVX2 kernel
+// gives the same bits as the portable one.
+#include "core/DataSet.h"
+#include "core/Image.h"
+#include "raycast/Atmosphere.h"
+#include "raycast/ShearResolve.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+#include <vector>
+
+using namespace overflight;
+
+namespace {
+
+// A block's scratch: kShearBlock entries per row, rows bottom-up.
+struct Scratch {
+    std::vector<std::uint32_t> color, slice;
+    explicit Scratch(int H) : color(std::size_t(kShearBlock) * std::size_t(H)), slice(color.size()) {}
+    void set(int j, int i, std::uint32_t c, std::uint32_t k) {
+        color[std::size_t(j) * kShearBlock + std::size_t(i)] = c;
+        slice[std::size_t(j) * kShearBlock + std::size_t(i)] = k;
+    }
+};
+
+ShearBlock block(int n, const std::vector<int>& jend, const std::vector<float>& len2) {
+    ShearBlock b;
+    b.n = n;
+    for (int i = 0; i < kShearBlock; ++i) {
+        b.jend[i] = i < n ? jend[std::size_t(i)] : 0;
+        b.len2[i] = i < n ? len2[std::size_t(i)] : 1.0f;
+    }
+    return b;
+}
+
+} // namespace
+
+// Three columns of a 5-pixel-wide, 3-row image, the block starting at image
+// column 1; no fog, sky from black (horizon) to white (zenith).
+//   row slopes bottom-up m = -0.75, 0, 0.75; column planes straight ahead (len2 = 1)
+//   column 0: painted 3 rows from slices 0, 1, 1; column 1: 1 row from slice 0; column 2: sky
+//   sky at m = 0: sine 0 -> black; at m = 0.75: sine 0.75 / 1.25 = 0.6 -> entry 614 of 1023 -> 153
+TEST(ShearResolve, HandWorkedBlock) {
+    Environment env;
+    env.fog_density = 0.0f;
+    env.sky_horizon = {0, 0, 0};
+    env.sky_zenith = {1, 1, 1};
+    FogTable fog;
+    fog.build(env.fog_density, 100.0f);
+    SkyTable sky;
+    sky.build(env);
+    const std::vector<float> rows = {-0.75f, 0.0f, 0.75f}, depth = {0.25f, 0.5f}, d = {10.0f, 20.0f};
+    const ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0xFFFFFFu, sky.entries()};
+    const int H = 3, W = 5;
+    const Rgb8 a{10, 20, 30}, b{40, 50, 60}, c{70, 80, 90}, e{1, 2, 3};
+    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2}) {
+        if (!resolve_kernel_available(kernel)) continue;
+        Scratch s(H);
+        s.set(0, 0, pack_rgb(a), 0);
+        s.set(1, 0, pack_rgb(b), 1);
+        s.set(2, 0, pack_rgb(c), 1);
+        s.set(0, 1, pack_rgb(e), 0);
+        s.set(1, 1, 0xABCDEFu, 12345); // above the painted rows: stale, must not be read
+        ColorImage color;
+        DepthImage z;
+        color.resize(W, H);
+        z.resize(W, H);
+        const Rgb8 untouched{9, 9, 9};
+        std::fill(color.pixels.begin(), color.pixels.end(), untouched);
+        std::fill(z.pixels.begin(), z.pixels.end(), -1.0f);
+        resolve_shear_block(t, block(3, {3, 1, 0}, {1, 1, 1}), H, s.color.data(), s.slice.data(),
+                            color.pixels.data() + 1, z.pixels.data() + 1, std::size_t(W), kernel);
+        const Rgb8 black{0, 0, 0}, grey{153, 153, 153};
+        // image rows top-down: r = H - 1 - j
+        EXPECT_EQ(color.at(1, 2), a);
+        EXPECT_EQ(color.at(1, 1), b);
+        EXPECT_EQ(color.at(1, 0), c);
+        EXPECT_EQ(z.at(1, 2), 0.25f);
+        EXPECT_EQ(z.at(1, 1), 0.5f);
+        EXPECT_EQ(z.at(1, 0), 0.5f);
+        EXPECT_EQ(color.at(2, 2), e);
+        EXPECT_EQ(z.at(2, 2), 0.25f);
+        EXPECT_EQ(color.at(2, 1), black);
+        EXPECT_EQ(color.at(2, 0), grey);
+        EXPECT_EQ(color.at(3, 1), black);
+        for (int r = 0; r < H; ++r) {
+            EXPECT_EQ(z.at(3, r), 1.0f);
+            EXPECT_EQ(color.at(0, r), untouched) << "outside the block";
+            EXPECT_EQ(color.at(4, r), untouched) << "outside the block";
+            EXPECT_EQ(z.at(4, r), -1.0f);
+        }
+        EXPECT_EQ(z.at(2, 1), 1.0f);
+    }
+}
+
+// GL_EXP fog at the eye distance d_k |ray|: a pixel 100 units away along a ray
+// of slope 0.75 in a plane straight ahead (|ray| = 1.25 per unit of depth) is
+// fogged at distance 125, as FogTable and fog_blend say.
+TEST(ShearResolve, FogAtTheEyeDistanceOfThePixel) {
+    Environment env;
+    env.fog_density = 0.01f;
+    FogTable fog;
+    fog.build(env.fog_density, 400.0f);
+    SkyTable sky;
+    sky.build(env);
+    const std::vector<float> rows = {0.75f}, depth = {0.9f}, d = {100.0f};
+    const std::uint32_t fog_color = 0x808080u, surface = pack_rgb(Rgb8{200, 10, 30});
+    const ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, fog_color, sky.entries()};
+    const std::uint32_t expected = fog_blend(surface, fog_color, fog.weight(125.0f));
+    EXPECT_NE(expected, surface);
+    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2}) {
+        if (!resolve_kernel_available(kernel)) continue;
+        Scratch s(1);
+        s.set(0, 0, surface, 0);
+        ColorImage color;
+        DepthImage z;
+        color.resize(1, 1);
+        z.resize(1, 1);
+        resolve_shear_block(t, block(1, {1}, {1.0f}), 1, s.color.data(), s.slice.data(), color.pixels.data(),
+                            z.pixels.data(), 1, kernel);
+        EXPECT_EQ(color.at(0, 0), unpack_rgb(expected));
+        EXPECT_EQ(z.at(0, 0), 0.9f);
+    }
+}
+
+// Random blocks, full and partial: both kernels write the same bytes.
+TEST(ShearResolve, KernelsAgreeBitForBit) {
+    if (!resolve_kernel_available(ResolveKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const int H = 301, S = 500, W = 70;
+    std::vector<float> rows(H), depth(S), d(S);
+    for (int j = 0; j < H; ++j) rows[std::size_t(j)] = -1.2f + 2.4f * float(j) / float(H);
+    for (int k = 0; k < S; ++k) {
+        d[std::size_t(k)] = 1.0f + 3.0f * float(k);
+        depth[std::size_t(k)] = 1.0f - 1.0f / d[std::size_t(k)];
+    }
+    Environment env;
+    FogTable fog;
+    fog.build(0.002f, d.back() * 2.0f);
+    SkyTable sky;
+    sky.build(env);
+    const ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0x9AB0C8u, sky.entries()};
+    for (int n : {kShearBlock, 7}) {
+        std::vector<int> jend(kShearBlock, 0);
+        std::vector<float> len2(kShearBlock, 1.0f);
+        for (int i = 0; i < n; ++i) {
+            jend[std::size_t(i)] = int(unit(rng) * float(H + 1)) % (H + 1);
+            len2[std::size_t(i)] = 1.0f + unit(rng);
+        }
+        jend[0] = H; // a full column and an empty one
+        jend[1] = 0;
+        Scratch s(H);
+        for (int j = 0; j < H; ++j)
+            for (int i = 0; i < kShearBlock; ++i)
+                s.set(j, i, std::uint32_t(rng()) & 0xFFFFFFu, j < jend[std::size_t(i)] ? std::uint32_t(rng() % S) : rng());
+        Scratch s2 = s;
+        ColorImage c1, c2;
+        DepthImage z1, z2;
+        c1.resize(W, H);
+        c2.resize(W, H);
+        z1.resize(W, H);
+        z2.resize(W, H);
+        const ShearBlock blk = block(n, jend, len2);
+        resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c1.pixels.data() + 3, z1.pixels.data() + 3,
+                            std::size_t(W), ResolveKernel::Portable);
+        resolve_shear_block(t, blk, H, s2.color.data(), s2.slice.data(), c2.pixels.data() + 3, z2.pixels.data() + 3,
+                            std::size_t(W), ResolveKernel::Avx2);
+        EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8))) << "n " << n;
+        EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float))) << "n " << n;
+        long long terrain = 0;
+        for (float v : z1.pixels) terrain += v < 1.0f;
+        EXPECT_GT(terrain, 0);
+    }
+}

@@ -1,0 +1,177 @@
+// Skipping runs of slices with the max-height pyramid (SliceRunBound) must not
+// change a single pixel: a run is skipped only when every sample in it stays
+// below the horizon, where Algorithm 1 (Szenberg 1997) paints nothing.
+#include "TestSupport.h"
+
+#include "core/Camera.h"
+#include "core/DemoIsland.h"
+#include "io/LoadTerrain.h"
+#include "raycast/FloatingHorizon.h"
+#include "raycast/HeightPyramid.h"
+#include "raycast/SliceRunBound.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <random>
+
+using namespace overflight;
+
+namespace {
+
+constexpr double kOne = 4294967296.0; // 32.32 fixed point
+
+// The nearest sample of a 32.32 position offset by half a sample, as the caster reads it.
+std::uint16_t nearest(const Terrain& t, std::int64_t gx, std::int64_t gz) {
+    return t.raw(int(gz >> 32), int(gx >> 32));
+}
+
+// A view from a third of the way in, looking across the terrain (as in the reference test).
+Camera view(const Terrain& t, double heading, double pitch, Projection proj) {
+    Camera cam;
+    cam.heading = heading;
+    cam.pitch = pitch;
+    cam.projection = proj;
+    cam.width = 160;
+    cam.height = 100;
+    const double extent = std::max(t.width(), t.depth());
+    const glm::dvec3 F = cam.forward();
+    const double x = t.width() * 0.5 - 0.3 * extent * F.x, z = t.depth() * 0.5 - 0.3 * extent * F.z;
+    const double relief = std::max(1.0, double(t.max_height() - t.min_height()));
+    cam.eye = {x, t.height_bilinear(float(x), float(z)) + 0.15 * relief + 2.0 * t.h_scale(), z};
+    cam.near = 1.0;
+    cam.far = 1.2 * extent;
+    return cam;
+}
+
+// Renders a sweep of views with and without skipping; returns the number of
+// views compared. Every pixel's color and depth must be bit-identical.
+int expect_same_with_and_without_skipping(const DataSet& ds, Projection proj, SurfaceModel surface) {
+    FloatingHorizon fh(ds.terrain, ds.environment);
+    RaycastOptions skip, full;
+    skip.surface = full.surface = surface;
+    full.skip_runs = false;
+    ColorImage c1, c2;
+    DepthImage d1, d2;
+    RaycastStats s1, s2;
+    int views = 0;
+    for (double heading = 0; heading < 360; heading += 45)
+        for (double pitch : {-30.0, -12.0, 0.0, 15.0}) {
+            const Camera cam = view(ds.terrain, heading, pitch, proj);
+            fh.render(cam, skip, c1, d1, &s1);
+            fh.render(cam, full, c2, d2, &s2);
+            ++views;
+            EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)))
+                << "color, heading " << heading << " pitch " << pitch;
+            EXPECT_EQ(0, std::memcmp(d1.pixels.data(), d2.pixels.data(), d1.pixels.size() * sizeof(float)))
+                << "depth, heading " << heading << " pitch " << pitch;
+            EXPECT_LE(s1.samples_visited, s2.samples_visited);
+        }
+    return views;
+}
+
+} // namespace
+
+// Runs in every direction, of both lengths the caster uses, from random
+// starts: the bound is at least every nearest sample of the run.
+TEST(SliceRunBound, BoundsEveryNearestSampleOfTheRun) {
+    const DataSet ds = make_demo_island({257});
+    const Terrain& t = ds.terrain;
+    const HeightPyramid pyramid(t, 12, false);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> angle(0.0, 2.0 * std::numbers::pi), stretch(1.0, 3.0), pos(0.0, 1.0);
+    long long runs = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const int run = trial % 2 ? 32 : 8;
+        const double a = angle(rng), len = stretch(rng); // samples per slice: 1 / cos(theta) >= 1
+        const std::int64_t sx = std::llround(len * std::cos(a) * kOne), sz = std::llround(len * std::sin(a) * kOne);
+        const SliceRunBound bound(pyramid, run, sx, sz);
+        ASSERT_TRUE(bound.usable());
+        // A start such that the whole run stays on the grid.
+        const double span = (run - 1) * len, lo = span + 1, hi_x = t.cols() - 2 - span, hi_z = t.rows() - 2 - span;
+        if (hi_x <= lo || hi_z <= lo) continue;
+        const std::int64_t gx = std::llround((lo + pos(rng) * (hi_x - lo) + 0.5) * kOne);
+        const std::int64_t gz = std::llround((lo + pos(rng) * (hi_z - lo) + 0.5) * kOne);
+        const std::uint16_t h = bound.max_height(gx, gz);
+        std::uint16_t highest = 0;
+        for (int q = 0; q < run; ++q) highest = std::max(highest, nearest(t, gx + q * sx, gz + q * sz));
+        ASSERT_GE(h, highest) << "trial " << trial;
+        ++runs;
+    }
+    EXPECT_GT(runs, 3000);
+}
+
+// Bilinear: the four samples around every position of the run (stepped in
+// floating point, as the caster does), or no bound at all near the edge.
+TEST(SliceRunBound, BilinearBoundsTheSamplesAroundTheRun) {
+    const DataSet ds = make_demo_island({257});
+    const Terrain& t = ds.terrain;
+    const HeightPyramid pyramid(t, 12, false);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> angle(0.0, 2.0 * std::numbers::pi), stretch(1.0, 3.0), pos(0.0, 1.0);
+    int bounded = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const double a = angle(rng), len = stretch(rng), sx = len * std::cos(a), sz = len * std::sin(a);
+        const SliceRunBound bound(pyramid, 8, std::llround(sx * kOne), std::llround(sz * kOne), Footprint::Bilinear);
+        ASSERT_TRUE(bound.usable());
+        double gx = 7 * len + pos(rng) * (t.cols() - 1 - 14 * len), gz = 7 * len + pos(rng) * (t.rows() - 1 - 14 * len);
+        const std::uint16_t h = bound.max_height(std::llround(gx * kOne), std::llround(gz * kOne));
+        std::uint16_t highest = 0;
+        bool edge = false;
+        for (int q = 0; q < 8; ++q, gx += sx, gz += sz) {
+            const int c0 = std::clamp(int(gx), 0, t.cols() - 2), r0 = std::clamp(int(gz), 0, t.rows() - 2);
+            edge = edge || c0 == 0 || r0 == 0 || c0 == t.cols() - 2 || r0 == t.rows() - 2;
+            for (int dr = 0; dr < 2; ++dr)
+                for (int dc = 0; dc < 2; ++dc) highest = std::max(highest, t.raw(r0 + dr, c0 + dc));
+        }
+        ASSERT_GE(h, highest) << "trial " << trial;
+        if (edge) {
+            EXPECT_EQ(h, 65535) << "trial " << trial;
+        }
+        bounded += h < 65535;
+    }
+    EXPECT_GT(bounded, 3000);
+}
+
+TEST(SliceRunBound, NotUsableWithoutACoarseEnoughLevel) {
+    Terrain t(5, 5, 1.0f);
+    const HeightPyramid pyramid(t, 12, false); // 3x3, 2x2, 1x1: up to 8 samples square
+    EXPECT_TRUE(SliceRunBound(pyramid, 4, std::llround(kOne), 0).usable());
+    EXPECT_FALSE(SliceRunBound(pyramid, 32, std::llround(kOne), 0).usable());
+    EXPECT_FALSE(SliceRunBound(pyramid, 0, std::llround(kOne), 0).usable());
+}
+
+TEST(FloatingHorizonRunSkipping, SameImageAsWithoutOnTheDemo) {
+    const DataSet ds = make_demo_island({257});
+    for (SurfaceModel surface : {SurfaceModel::Blocks, SurfaceModel::Bilinear}) {
+        EXPECT_EQ(expect_same_with_and_without_skipping(ds, Projection::Shear, surface), 32);
+        EXPECT_EQ(expect_same_with_and_without_skipping(ds, Projection::Tilt, surface), 32);
+    }
+}
+
+TEST(FloatingHorizonRunSkipping, SameImageAsWithoutOnCraterLake) {
+    OVERFLIGHT_SHARED_FILE(path, "bt/crater_0513.bt");
+    const DataSet ds = load_terrain(path);
+    EXPECT_EQ(expect_same_with_and_without_skipping(ds, Projection::Shear, SurfaceModel::Blocks), 32);
+    EXPECT_EQ(expect_same_with_and_without_skipping(ds, Projection::Shear, SurfaceModel::Bilinear), 32);
+}
+
+// Skipping reads fewer samples (not a time; on this small view a quarter fewer,
+// on the bench's 4097^2 view a quarter as many).
+TEST(FloatingHorizonRunSkipping, ReadsFewerSamples) {
+    const DataSet ds = make_demo_island({257});
+    FloatingHorizon fh(ds.terrain, ds.environment);
+    const Camera cam = view(ds.terrain, 0, -12, Projection::Shear);
+    RaycastOptions full;
+    full.skip_runs = false;
+    ColorImage c;
+    DepthImage d;
+    RaycastStats with, without;
+    fh.render(cam, {}, c, d, &with);
+    fh.render(cam, full, c, d, &without);
+    EXPECT_LT(with.samples_visited * 5, without.samples_visited * 4)
+        << with.samples_visited << " vs " << without.samples_visited;
+}
