@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -21,7 +22,11 @@ namespace {
 constexpr float kLeastError = 1.0f / 1024.0f;
 const std::uint32_t kLeastKey = std::bit_cast<std::uint32_t>(kLeastError) >> 16;
 
-inline double sq(double v) { return v * v; }
+// A hint that a line will be read soon. The rebuild waits mostly on loads of
+// nodes, heights and variance bounds at random places; issuing them together
+// before they are needed lets the misses overlap.
+static const bool kPf = !std::getenv("ROAM_NOPF"); // SCRATCH
+inline void prefetch(const void* p) { if (kPf) __builtin_prefetch(p); }
 
 } // namespace
 
@@ -38,11 +43,17 @@ int roam_scale_budget(int budget, int steps) {
 }
 
 RoamMesh::RoamMesh(const Terrain& terrain, const RoamOptions& options) : terrain_(&terrain) {
+    if (options.variance_depth < 0 || options.variance_depth > RoamOptions::kMaxVarianceDepth)
+        throw Error("roam", "variance depth " + std::to_string(options.variance_depth) + " is outside 0.." +
+                                std::to_string(RoamOptions::kMaxVarianceDepth));
     if (terrain.rows() != terrain.cols() || !is_pow2_plus1(terrain.rows())) {
         padded_ = true;
         padded_copy_ = pad_to_pow2_plus1(terrain);
     }
     if (grid().rows() < 3) throw Error("roam", "terrain needs at least 3x3 samples");
+    // Vertices keep row and column in 16 bits.
+    if (grid().rows() > 32769)
+        throw Error("roam", "grid of " + std::to_string(grid().rows()) + "^2 samples is above 32769^2");
     variance_ = RoamVarianceTree(grid(), options.variance_depth);
     size_ = grid().rows();
     finest_ = variance_.finest_level();
@@ -56,24 +67,30 @@ RoamMesh::RoamMesh(const Terrain& terrain, const RoamOptions& options) : terrain
     for (int level = 0; level <= finest_; ++level)
         radius_[std::size_t(level)] =
             float(0.5 * grid().h_scale() * double(size_ - 1) * std::sqrt(2.0) / std::pow(std::sqrt(2.0), level));
-    heads_.assign(kRoamBuckets, -1);
+    buckets_.resize(kRoamBuckets);
 }
 
 void RoamMesh::reserve_for(int budget) {
     // Without padding the leaves are the output triangles (<= budget) and a
     // binary forest of L leaves has 2L - 2 nodes; the slack covers leaves in
-    // the padding and the deepest forced-split chain.
+    // the padding and the deepest forced-split chain. A split adds one vertex
+    // and at least two nodes.
     const std::size_t cap = 2 * std::size_t(budget) + std::size_t(budget) / 2 + 64 * std::size_t(finest_ + 2);
-    if (cap > capacity_) {
-        nodes_.reserve(cap);
-        vertices_.reserve(cap);
-        capacity_ = cap;
+    if (cap > nodes_.size()) {
+        nodes_ = decltype(nodes_)(cap);
+        children_.assign(cap, -1);
+        vertices_.assign(cap / 2 + 4, Vertex{});
     }
 }
 
 std::uint32_t RoamMesh::add_vertex(std::int32_t row, std::int32_t col) {
-    vertices_.push_back({row, col, grid().sample_height(row, col)});
-    return std::uint32_t(vertices_.size() - 1);
+    const double hs = grid().h_scale();
+    Vertex& v = vertices_[vertex_count_];
+    v.row = std::uint16_t(row);
+    v.col = std::uint16_t(col);
+    v.raw = heights_[std::size_t(row) * std::size_t(size_) + std::size_t(col)];
+    v.outcode = wedge_.outcode({hs * col, hs * row});
+    return std::uint32_t(vertex_count_++);
 }
 
 bool RoamMesh::outside_domain(Rc a, Rc b, Rc c) const {
@@ -95,116 +112,128 @@ int RoamMesh::split_delta(Rc a, Rc v0, Rc v1, bool outside) const {
 
 int RoamMesh::chain_cost(std::int32_t t) const {
     const Node& T = nodes_[std::size_t(t)];
-    int cost = split_delta(rc(T.v[0]), rc(T.v[1]), rc(T.v[2]), T.flags & kOutside);
+    int cost = split_delta(rc(T.v[0]), rc(T.v[1]), rc(T.v[2]), T.flags() & kOutside);
     const std::int32_t b = T.nb[1];
     if (b < 0) return cost;
     const Node& B = nodes_[std::size_t(b)];
-    if (B.nb[1] == t) return cost + split_delta(rc(B.v[0]), rc(B.v[1]), rc(B.v[2]), B.flags & kOutside);
+    if (B.nb[1] == t) return cost + split_delta(rc(B.v[0]), rc(B.v[1]), rc(B.v[2]), B.flags() & kOutside);
     // B is one level coarser (Fig. 5): it splits first, then its child that
     // faces T splits together with T.
     const Rc a = rc(B.v[0]), v0 = rc(B.v[1]), v1 = rc(B.v[2]);
     const Rc m{(v0.row + v1.row) / 2, (v0.col + v1.col) / 2};
     const bool facing0 = B.nb[0] == t;
     const Rc c0 = m, c1 = facing0 ? a : v1, c2 = facing0 ? v0 : a;
-    const bool child_outside = (B.flags & kOutside) || (padded_ && outside_domain(c0, c1, c2));
+    const bool child_outside = (B.flags() & kOutside) || (padded_ && outside_domain(c0, c1, c2));
     return cost + chain_cost(b) + split_delta(c0, c1, c2, child_outside);
 }
 
-void RoamMesh::init_node(Node& n, int level, std::uint32_t var_node, std::uint8_t inherited, float parent_error) {
-    n.child = -1;
-    n.var_node = var_node;
-    n.prev = n.next = -1;
-    n.bucket = 0;
-    n.level = std::uint8_t(level);
-    n.flags = 0;
-    n.error = 0;
+void RoamMesh::init_node(Node& n, int level, std::uint32_t var_node, unsigned inherited, float parent_error) const {
+    // Fields are computed first and written once each, whole (see split_pair).
+    unsigned flags = 0;
+    float error = 0;
     const Vertex& a = vertices_[n.v[0]];
     const Vertex& b = vertices_[n.v[1]];
     const Vertex& c = vertices_[n.v[2]];
     if (inherited & kOutside) {
-        n.flags = kOutside;
-        return;
-    }
-    if ((inherited & kStraddle) && padded_) {
-        const Rc ra{a.row, a.col}, rb{b.row, b.col}, rcc{c.row, c.col};
-        if (outside_domain(ra, rb, rcc)) {
-            n.flags = kOutside;
-            return;
+        flags = kOutside;
+    } else {
+        if ((inherited & kStraddle) && padded_) {
+            const Rc ra{a.row, a.col}, rb{b.row, b.col}, rcc{c.row, c.col};
+            if (outside_domain(ra, rb, rcc))
+                flags = kOutside;
+            else if (straddles_domain(ra, rb, rcc))
+                flags = kStraddle;
         }
-        if (straddles_domain(ra, rb, rcc)) n.flags |= kStraddle;
+        if (!(flags & kOutside)) error = priority(a, b, c, level, var_node, inherited, parent_error, flags);
     }
-    const double hs = grid().h_scale();
+    n.error = error;
+    n.bits = Node::pack(var_node, level, flags);
+}
+
+float RoamMesh::priority(const Vertex& a, const Vertex& b, const Vertex& c, int level, std::uint32_t var_node,
+                         unsigned inherited, float parent_error, unsigned& flags) const {
     if ((inherited & kFocus) && focus_) {
         // Inclusive point-in-triangle in grid units, either winding.
+        const double hs = grid().h_scale();
         const double px = focus_->x / hs, pz = focus_->y / hs;
         auto edge = [&](const Vertex& p, const Vertex& q) {
             return (double(q.col) - p.col) * (pz - p.row) - (double(q.row) - p.row) * (px - p.col);
         };
         const double e0 = edge(a, b), e1 = edge(b, c), e2 = edge(c, a);
-        if ((e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0)) n.flags |= kFocus;
+        if ((e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0)) flags |= kFocus;
     }
-    if ((inherited & kInvisible) ||
-        wedge_.outside({hs * a.col, hs * a.row}, {hs * b.col, hs * b.row}, {hs * c.col, hs * c.row})) {
-        n.flags |= kInvisible;
-        return; // error 0: nothing of it reaches the screen
+    if ((inherited & kInvisible) || RoamViewWedge::outside(a.outcode, b.outcode, c.outcode)) {
+        flags |= kInvisible;
+        return 0; // nothing of it reaches the screen
     }
-    if (level >= finest_) return; // half cells are exact
+    if (level >= finest_) return 0; // half cells are exact
     // Projected error of the variance bound at the nearest point of the
     // triangle's bounding circle around its hypotenuse midpoint.
-    const double mx = hs * 0.5 * (b.col + c.col), mz = hs * 0.5 * (b.row + c.row), my = 0.5 * (double(b.y) + c.y);
-    const double dist = std::sqrt(sq(mx - camera_.eye.x) + sq(my - camera_.eye.y) + sq(mz - camera_.eye.z));
-    const double d = std::max(dist - double(radius_[std::size_t(level)]), camera_.near);
-    const double e = double(variance_.world(var_node)) * focal_px_ / d;
-    n.error = std::min(float(e), parent_error);
+    const float mx = half_hs_ * float(b.col + c.col) - eye_x_;
+    const float mz = half_hs_ * float(b.row + c.row) - eye_z_;
+    const float my = half_vs_ * float(b.raw + c.raw) + y_offset_ - eye_y_;
+    const float dist = std::sqrt(mx * mx + my * my + mz * mz);
+    const float d = std::max(dist - radius_[std::size_t(level)], near_);
+    return std::min(variance_.world(var_node) * focal_px_ / d, parent_error);
 }
 
-void RoamMesh::enqueue(std::int32_t t) {
-    Node& n = nodes_[std::size_t(t)];
-    if (n.level >= finest_ || (n.flags & kOutside)) return;
+void RoamMesh::enqueue(std::int32_t t, const Node& n) {
+    if (int(n.level()) >= finest_ || (n.flags() & kOutside)) return;
     int b;
-    if (n.flags & kFocus)
+    if (n.flags() & kFocus)
         b = kRoamBuckets - 1;
-    else if (n.flags & kInvisible)
+    else if (n.flags() & kInvisible)
         return; // minimum priority: split only when forced
-    else if (n.flags & kStraddle)
+    else if (n.flags() & kStraddle)
         b = kRoamBuckets - 1;
     else
         b = roam_bucket(n.error);
-    n.bucket = std::uint16_t(b);
-    n.prev = -1;
-    n.next = heads_[std::size_t(b)];
-    if (n.next >= 0) nodes_[std::size_t(n.next)].prev = t;
-    heads_[std::size_t(b)] = t;
+    // A node queued at the top is popped next (LIFO): its split is prepared
+    // now, while its base neighbour, just relinked, is still in cache.
+    if (b >= max_bucket_) prefetch_split(t, n);
+    buckets_[std::size_t(b)].push_back(t);
     max_bucket_ = std::max(max_bucket_, b);
 }
 
-void RoamMesh::dequeue(std::int32_t t) {
-    Node& n = nodes_[std::size_t(t)];
-    if (n.bucket == 0) return;
-    if (n.prev >= 0)
-        nodes_[std::size_t(n.prev)].next = n.next;
-    else
-        heads_[n.bucket] = n.next;
-    if (n.next >= 0) nodes_[std::size_t(n.next)].prev = n.prev;
-    n.bucket = 0;
-    n.prev = n.next = -1;
+void RoamMesh::prefetch_split(std::int32_t t, const Node& n) const {
+    // What splitting t reads: its neighbours (base and relinked outer ones),
+    // the height at its hypotenuse midpoint (the new vertex) and its
+    // children's bounds; and, t's base neighbour being in cache, what
+    // splitting that one along with t reads.
+    for (const std::int32_t x : n.nb)
+        if (x >= 0) prefetch(&nodes_[std::size_t(x)]);
+    const Vertex& v0 = vertices_[n.v[1]];
+    const Vertex& v1 = vertices_[n.v[2]];
+    prefetch(&heights_[std::size_t((v0.row + v1.row) / 2) * std::size_t(size_) + std::size_t((v0.col + v1.col) / 2)]);
+    const bool stored = int(n.level()) < variance_.stored_depth();
+    if (stored) prefetch(variance_.data() + 2 * n.var_node());
+    if (n.nb[1] < 0) return;
+    const Node& b = nodes_[std::size_t(n.nb[1])];
+    if (b.nb[1] != t) return;
+    if (b.nb[0] >= 0) prefetch(&nodes_[std::size_t(b.nb[0])]);
+    if (b.nb[2] >= 0) prefetch(&nodes_[std::size_t(b.nb[2])]);
+    if (stored) prefetch(variance_.data() + 2 * b.var_node());
 }
 
-std::int32_t RoamMesh::top() {
-    while (max_bucket_ > 0 && heads_[std::size_t(max_bucket_)] < 0) --max_bucket_;
-    return max_bucket_ > 0 ? heads_[std::size_t(max_bucket_)] : -1;
-}
-
-void RoamMesh::make_children(std::int32_t t, std::uint32_t m) {
-    const std::int32_t c = std::int32_t(nodes_.size());
-    nodes_.resize(nodes_.size() + 2); // within the reserved capacity: no reallocation
+void RoamMesh::make_children(std::int32_t t, std::int32_t c, std::uint32_t m, std::int32_t across) {
+    // Fields of T are read one by one and new nodes written field by field,
+    // never copied whole: a load of a word after narrower stores into it
+    // would wait for every older store, the relinks' cache misses included,
+    // to reach the cache.
     Node& T = nodes_[std::size_t(t)];
+    const std::uint32_t apex = T.v[0], v0 = T.v[1], v1 = T.v[2];
+    const std::int32_t n0 = T.nb[0], n2 = T.nb[2];
+    const std::uint32_t bits = T.bits;
+    const float error = T.error;
+    // Child 0 = (m, apex, v0), child 1 = (m, v1, apex). Across the halves of
+    // the hypotenuse, child 0 meets the partner's child 1 and child 1 meets
+    // the partner's child 0 (`across`).
     Node& c0 = nodes_[std::size_t(c)];
     Node& c1 = nodes_[std::size_t(c) + 1];
-    c0.v = {m, T.v[0], T.v[1]};
-    c1.v = {m, T.v[2], T.v[0]};
-    c0.nb = {c + 1, T.nb[0], -1};
-    c1.nb = {-1, T.nb[2], c};
+    c0.v = {m, apex, v0};
+    c0.nb = {c + 1, n0, across >= 0 ? across + 1 : -1};
+    c1.v = {m, v1, apex};
+    c1.nb = {across, n2, c};
     // The outer neighbours now border a child instead of T.
     auto relink = [&](std::int32_t n, std::int32_t to) {
         if (n < 0) return;
@@ -214,42 +243,36 @@ void RoamMesh::make_children(std::int32_t t, std::uint32_t m) {
                 return;
             }
     };
-    relink(T.nb[0], c);
-    relink(T.nb[2], c + 1);
-    T.child = c;
-    dequeue(t);
-    const int level = T.level + 1;
-    const std::uint32_t var0 = T.level < variance_.stored_depth() ? 2 * T.var_node : T.var_node;
-    const std::uint32_t var1 = T.level < variance_.stored_depth() ? 2 * T.var_node + 1 : T.var_node;
-    if (!(T.flags & kOutside)) count_ -= 1;
-    init_node(c0, level, var0, T.flags, T.error);
-    init_node(c1, level, var1, T.flags, T.error);
-    count_ += int(!(c0.flags & kOutside)) + int(!(c1.flags & kOutside));
+    relink(n0, c);
+    relink(n2, c + 1);
+    T.bits = bits | std::uint32_t(kSplit) << 27;
+    children_[std::size_t(t)] = c;
+    const Node parent{{}, {}, error, bits};
+    const int level = parent.level() + 1;
+    const unsigned flags = parent.flags();
+    const bool deeper = parent.level() < variance_.stored_depth();
+    const std::uint32_t var = parent.var_node();
+    init_node(c0, level, deeper ? 2 * var : var, flags, error);
+    init_node(c1, level, deeper ? 2 * var + 1 : var, flags, error);
+    count_ += int(!(c0.flags() & kOutside)) + int(!(c1.flags() & kOutside)) - int(!(flags & kOutside));
     ++splits_;
 }
 
 void RoamMesh::split_pair(std::int32_t t, std::int32_t b) {
-    const Node& T = nodes_[std::size_t(t)];
-    const Vertex& v0 = vertices_[T.v[1]];
-    const Vertex& v1 = vertices_[T.v[2]];
+    const Vertex& v0 = vertices_[nodes_[std::size_t(t)].v[1]];
+    const Vertex& v1 = vertices_[nodes_[std::size_t(t)].v[2]];
     const std::uint32_t m = add_vertex((v0.row + v1.row) / 2, (v0.col + v1.col) / 2);
-    make_children(t, m);
-    const std::int32_t c = nodes_[std::size_t(t)].child;
+    const std::int32_t c = std::int32_t(node_count_), d = c + 2;
+    node_count_ += b >= 0 ? 4 : 2; // within the reserved pool: no allocation
+    make_children(t, c, m, b >= 0 ? d : -1);
     if (b >= 0) {
-        make_children(b, m);
-        const std::int32_t d = nodes_[std::size_t(b)].child;
-        // The halves of the common hypotenuse: T's child 0 meets B's child 1
-        // and T's child 1 meets B's child 0.
-        nodes_[std::size_t(c)].nb[2] = d + 1;
-        nodes_[std::size_t(c) + 1].nb[0] = d;
-        nodes_[std::size_t(d)].nb[2] = c + 1;
-        nodes_[std::size_t(d) + 1].nb[0] = c;
-        enqueue(d);
-        enqueue(d + 1);
+        make_children(b, d, m, c);
+        enqueue(d, nodes_[std::size_t(d)]);
+        enqueue(d + 1, nodes_[std::size_t(d) + 1]);
         ++forced_;
     }
-    enqueue(c);
-    enqueue(c + 1);
+    enqueue(c, nodes_[std::size_t(c)]);
+    enqueue(c + 1, nodes_[std::size_t(c) + 1]);
 }
 
 void RoamMesh::split(std::int32_t t, bool forced) {
@@ -268,58 +291,70 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
     camera.validate();
     if (budget < 2) throw Error("--triangles", "budget " + std::to_string(budget) + " is below 2 triangles");
     reserve_for(budget);
-    nodes_.clear();
-    vertices_.clear();
-    std::fill(heads_.begin(), heads_.end(), -1);
+    node_count_ = vertex_count_ = 0;
+    for (auto& bucket : buckets_) bucket.clear();
     max_bucket_ = 0;
     count_ = 0;
     splits_ = forced_ = 0;
     camera_ = camera;
-    focal_px_ = camera.focal_px();
+    eye_x_ = float(camera.eye.x);
+    eye_y_ = float(camera.eye.y);
+    eye_z_ = float(camera.eye.z);
+    focal_px_ = float(camera.focal_px());
+    half_hs_ = 0.5f * grid().h_scale();
+    half_vs_ = 0.5f * grid().v_scale();
+    y_offset_ = grid().y_offset();
+    near_ = float(camera.near);
+    heights_ = grid().heights().data();
     wedge_ = RoamViewWedge::from_camera(camera, min_y_, max_y_);
     focus_ = focus;
 
     const std::int32_t n = size_ - 1;
     const std::uint32_t nw = add_vertex(0, 0), ne = add_vertex(0, n), sw = add_vertex(n, 0), se = add_vertex(n, n);
-    nodes_.resize(2);
+    node_count_ = 2;
     nodes_[0].v = {ne, nw, se};
     nodes_[0].nb = {-1, 1, -1};
     nodes_[1].v = {sw, se, nw};
     nodes_[1].nb = {-1, 0, -1};
-    const std::uint8_t test = kFocus | kStraddle;
+    const unsigned test = kFocus | kStraddle;
     const float unbounded = std::numeric_limits<float>::max();
     for (int r = 0; r < 2; ++r) {
         init_node(nodes_[std::size_t(r)], 0, std::uint32_t(2 + r), test, unbounded);
-        count_ += !(nodes_[std::size_t(r)].flags & kOutside);
-        enqueue(r);
+        count_ += !(nodes_[std::size_t(r)].flags() & kOutside);
+        enqueue(r, nodes_[std::size_t(r)]);
     }
 
     // Seed 003 sec. 5: "while (size of mesh < limit) split highest priority
     // triangle". A split whose forced chain would overshoot the budget is set
     // aside (the triangle stays a leaf for this frame) and the next one is
-    // tried, so the mesh ends within one triangle of the budget.
+    // tried, so the mesh ends within one triangle of the budget. A chain adds
+    // at most two triangles per level, so its cost is only worked out when
+    // that many could overshoot.
     const std::size_t chain_nodes = 4 * std::size_t(finest_ + 2);
-    while (count_ + 2 <= budget && nodes_.size() + chain_nodes <= capacity_) {
-        const std::int32_t t = top();
-        if (t < 0) break;
-        if (count_ + chain_cost(t) > budget) {
-            dequeue(t);
-            continue;
-        }
+    const long long chain_bound = 2 * (finest_ + 1);
+    while (count_ + 2 <= budget && node_count_ + chain_nodes <= nodes_.size()) {
+        while (max_bucket_ > 0 && buckets_[std::size_t(max_bucket_)].empty()) --max_bucket_;
+        if (max_bucket_ == 0) break;
+        auto& bucket = buckets_[std::size_t(max_bucket_)];
+        const std::int32_t t = bucket.back();
+        bucket.pop_back();
+        if (!bucket.empty()) prefetch(&nodes_[std::size_t(bucket.back())]); // the likely next pop
+        if (nodes_[std::size_t(t)].flags() & kSplit) continue; // split by force since it was queued
+        if (count_ + chain_bound > budget && count_ + chain_cost(t) > budget) continue; // set aside
         split(t, false);
     }
 
     RoamStats s;
     s.splits = splits_;
     s.forced_splits = forced_;
-    s.vertices = vertices_.size();
+    s.vertices = vertex_count_;
     double sum = 0;
-    for (std::size_t i = 0; i < nodes_.size(); ++i) {
-        if (!is_output(i)) continue;
+    for (std::size_t i = 0; i < node_count_; ++i) {
         const Node& nd = nodes_[i];
+        if (nd.flags() & (kSplit | kOutside)) continue;
         ++s.triangles;
-        s.max_level = std::max(s.max_level, int(nd.level));
-        if (nd.flags & kInvisible) continue;
+        s.max_level = std::max(s.max_level, int(nd.level()));
+        if (nd.flags() & kInvisible) continue;
         ++s.visible_triangles;
         sum += nd.error;
         s.max_error_px = std::max(s.max_error_px, double(nd.error));
@@ -329,25 +364,30 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
 }
 
 void RoamMesh::write_mesh(MeshArrays& out) const {
-    const std::size_t nv = vertices_.size();
+    const std::size_t nv = vertex_count_;
     out.positions.resize(nv);
     out.normals.resize(nv);
     out.colors.resize(nv);
-    const float hs = grid().h_scale();
+    const Terrain& g = grid();
+    const float hs = g.h_scale(), vs = g.v_scale(), y0 = g.y_offset();
     for (std::size_t i = 0; i < nv; ++i) {
         const Vertex& v = vertices_[i];
-        out.positions[i] = {hs * float(v.col), v.y, hs * float(v.row)};
+        out.positions[i] = {hs * float(v.col), vs * float(v.raw) + y0, hs * float(v.row)};
         // Inside the terrain its own normals and colors; padding vertices
         // (only on border-straddling triangles) take the padded copy's.
         const Terrain& src = (v.row < domain_rows_ && v.col < domain_cols_) ? *terrain_ : padded_copy_;
         out.normals[i] = src.sample_normal(v.row, v.col);
         out.colors[i] = src.color(v.row, v.col);
     }
-    out.indices.clear();
-    for (std::size_t i = 0; i < nodes_.size(); ++i) {
-        if (!is_output(i)) continue;
+    out.indices.resize(3 * std::size_t(count_));
+    std::uint32_t* idx = out.indices.data();
+    for (std::size_t i = 0; i < node_count_; ++i) {
         const Node& nd = nodes_[i];
-        out.indices.insert(out.indices.end(), {nd.v[0], nd.v[1], nd.v[2]});
+        if (nd.flags() & (kSplit | kOutside)) continue;
+        idx[0] = nd.v[0];
+        idx[1] = nd.v[1];
+        idx[2] = nd.v[2];
+        idx += 3;
     }
 }
 

@@ -29,6 +29,15 @@
 //
 // No allocation per split: node and vertex pools are reserved for the budget
 // once and reused across frames (they grow only when the budget grows).
+//
+// Speed (issue 5: >= 10 M triangles/s per core). The rebuild is bound by
+// cache misses on the nodes it touches at random (the popped triangle, its
+// base neighbour and the outer neighbours it relinks), so a node is 32 bytes
+// and the two children of a split share one 64-byte line; the queue keeps no
+// links in the nodes (a bucket is a stack, a node split by force is dropped
+// when popped); the view wedge is tested once per vertex (outcodes) instead
+// of once per triangle; the cost of a forced-split chain is only worked out
+// within reach of the budget.
 #include "core/Camera.h"
 #include "core/MeshArrays.h"
 #include "core/Terrain.h"
@@ -36,16 +45,20 @@
 #include "lod/RoamViewWedge.h"
 
 #include <glm/vec2.hpp>
+#include <tbb/cache_aligned_allocator.h>
 
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace overflight {
 
 struct RoamOptions {
-    // Deepest bintree level with its own variance bound (memory 2^(depth+2) x 2 bytes).
+    // Deepest bintree level with its own variance bound (memory 2^(depth+2) x 2
+    // bytes); 0 .. kMaxVarianceDepth.
+    static constexpr int kMaxVarianceDepth = 20;
     int variance_depth = RoamVarianceTree::kDefaultMaxDepth;
 };
 
@@ -77,7 +90,8 @@ class RoamMesh {
 public:
     // Builds the variance tree of `terrain` (padded to (2^N+1)^2 when needed).
     // `terrain` must outlive the RoamMesh (vertex colors and normals are read
-    // from it). Throws Error("roam", ...) for a bad variance depth.
+    // from it). Throws Error("roam", ...) for a bad variance depth or a grid
+    // larger than 32769^2.
     explicit RoamMesh(const Terrain& terrain, const RoamOptions& options = {});
 
     // One frame: rebuilds the mesh for `camera` with at most `budget` output
@@ -102,26 +116,35 @@ public:
         kOutside = 2,   // wholly in the padding
         kStraddle = 4,  // partly in the padding
         kInvisible = 8, // outside the view wedge
+        kSplit = 16,    // has children (child(i))
     };
-    struct Node {
-        std::array<std::uint32_t, 3> v;  // vertex ids: apex, v0, v1 (hypotenuse v0-v1)
+    struct alignas(32) Node {
         std::array<std::int32_t, 3> nb;  // neighbours across (apex,v0), (v0,v1) = base, (v1,apex); -1 = border
-        std::int32_t child;              // first child (second is child + 1), -1 for a leaf
-        std::uint32_t var_node;          // stored variance-tree node (itself or its deepest stored ancestor)
-        std::int32_t prev, next;         // bucket links
+        std::array<std::uint32_t, 3> v;  // vertex ids: apex, v0, v1 (hypotenuse v0-v1)
         float error;                     // projected error in pixels, nested
-        std::uint16_t bucket;            // 0 when not queued
-        std::uint8_t level;
-        std::uint8_t flags;
+        // var_node | level << 22 | flags << 27, one word so that it is always
+        // written and read whole.
+        std::uint32_t bits;
+        // Stored variance-tree node (itself or its deepest stored ancestor).
+        std::uint32_t var_node() const { return bits & ((1u << 22) - 1); }
+        int level() const { return int(bits >> 22 & 31u); }
+        unsigned flags() const { return bits >> 27; } // NodeFlags
+        static std::uint32_t pack(std::uint32_t var_node, int level, unsigned flags) {
+            return var_node | std::uint32_t(level) << 22 | flags << 27;
+        }
     };
+    static_assert(sizeof(Node) == 32);
     struct Vertex {
-        std::int32_t row, col;
-        float y; // world height
+        std::uint16_t row, col;
+        std::uint16_t raw;    // height sample of grid()
+        std::uint8_t outcode; // RoamViewWedge::outcode of the vertex
     };
-    const std::vector<Node>& nodes() const { return nodes_; }
-    const std::vector<Vertex>& vertices() const { return vertices_; }
+    std::span<const Node> nodes() const { return {nodes_.data(), node_count_}; }
+    std::span<const Vertex> vertices() const { return {vertices_.data(), vertex_count_}; }
+    // First child of a split node i (the second is child(i) + 1).
+    std::int32_t child(std::size_t i) const { return children_[i]; }
     // True when node i is output: a leaf not wholly in the padding.
-    bool is_output(std::size_t i) const { return nodes_[i].child < 0 && !(nodes_[i].flags & kOutside); }
+    bool is_output(std::size_t i) const { return !(nodes_[i].flags() & (kSplit | kOutside)); }
 
 private:
     struct Rc {
@@ -129,17 +152,18 @@ private:
     };
     void reserve_for(int budget);
     std::uint32_t add_vertex(std::int32_t row, std::int32_t col);
-    void init_node(Node& n, int level, std::uint32_t var_node, std::uint8_t inherited_flags, float parent_error);
+    void init_node(Node& n, int level, std::uint32_t var_node, unsigned inherited_flags, float parent_error) const;
+    float priority(const Vertex& a, const Vertex& b, const Vertex& c, int level, std::uint32_t var_node,
+                   unsigned inherited_flags, float parent_error, unsigned& flags) const;
     bool outside_domain(Rc a, Rc b, Rc c) const;
     bool straddles_domain(Rc a, Rc b, Rc c) const;
     int split_delta(Rc a, Rc v0, Rc v1, bool outside) const;
     int chain_cost(std::int32_t t) const;
     void split(std::int32_t t, bool forced);
     void split_pair(std::int32_t t, std::int32_t b);
-    void make_children(std::int32_t t, std::uint32_t m);
-    void enqueue(std::int32_t t);
-    void dequeue(std::int32_t t);
-    std::int32_t top();
+    void make_children(std::int32_t t, std::int32_t c, std::uint32_t m, std::int32_t across);
+    void enqueue(std::int32_t t, const Node& n);
+    void prefetch_split(std::int32_t t, const Node& n) const;
     Rc rc(std::uint32_t vid) const { return {vertices_[vid].row, vertices_[vid].col}; }
 
     const Terrain* terrain_;
@@ -155,13 +179,17 @@ private:
     // Per-frame state.
     Camera camera_;
     RoamViewWedge wedge_;
-    double focal_px_ = 1;
+    float eye_x_ = 0, eye_y_ = 0, eye_z_ = 0, focal_px_ = 1, near_ = 1;
+    float half_hs_ = 0.5f, half_vs_ = 0.5f, y_offset_ = 0; // of grid()
+    const std::uint16_t* heights_ = nullptr; // grid() samples, row-major
     std::optional<glm::dvec2> focus_;
-    std::vector<Node> nodes_;
+    // Pools sized once for the budget; the counts say what the frame uses.
+    std::vector<Node, tbb::cache_aligned_allocator<Node>> nodes_;
+    std::vector<std::int32_t> children_;
     std::vector<Vertex> vertices_;
-    std::vector<std::int32_t> heads_; // bucket lists
+    std::size_t node_count_ = 0, vertex_count_ = 0;
+    std::vector<std::vector<std::int32_t>> buckets_; // stacks of queued nodes
     int max_bucket_ = 0;
-    std::size_t capacity_ = 0;
     long long count_ = 0;             // output triangles
     std::size_t splits_ = 0, forced_ = 0;
 };

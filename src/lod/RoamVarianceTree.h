@@ -58,6 +58,8 @@ public:
     std::uint16_t raw(std::uint32_t node) const { return nodes_[node]; }
     // The same bound in world units (raw * v_scale).
     float world(std::uint32_t node) const { return float(nodes_[node]) * v_scale_; }
+    // The stored bounds, indexed like raw() (for prefetching).
+    const std::uint16_t* data() const { return nodes_.data(); }
     // Bytes held by the tree.
     std::size_t memory_bytes() const { return nodes_.size() * sizeof(std::uint16_t); }
 

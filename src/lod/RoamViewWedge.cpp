@@ -42,15 +42,12 @@ RoamViewWedge RoamViewWedge::from_camera(const Camera& camera, double min_y, dou
     return w;
 }
 
-bool RoamViewWedge::outside(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) const {
-    if (!enabled) return false;
-    const glm::dvec2 pa = a - eye, pb = b - eye, pc = c - eye;
-    auto all_negative = [&](const glm::dvec2& n) {
-        return glm::dot(n, pa) < 0 && glm::dot(n, pb) < 0 && glm::dot(n, pc) < 0;
-    };
-    if (all_negative(inner_left) || all_negative(inner_right) || all_negative(forward)) return true;
-    return glm::dot(forward, pa) > far_forward && glm::dot(forward, pb) > far_forward &&
-           glm::dot(forward, pc) > far_forward;
+std::uint8_t RoamViewWedge::outcode(const glm::dvec2& p) const {
+    if (!enabled) return 0;
+    const glm::dvec2 d = p - eye;
+    const double ahead = glm::dot(forward, d);
+    return std::uint8_t((glm::dot(inner_left, d) < 0 ? kBehindLeft : 0) | (glm::dot(inner_right, d) < 0 ? kBehindRight : 0) |
+                        (ahead < 0 ? kBehindEye : 0) | (ahead > far_forward ? kBeyondFar : 0));
 }
 
 } // namespace overflight

@@ -14,6 +14,8 @@
 
 #include <glm/vec2.hpp>
 
+#include <cstdint>
+
 namespace overflight {
 
 struct RoamViewWedge {
@@ -27,10 +29,20 @@ struct RoamViewWedge {
     // (the far cut of a tilted camera depends on height).
     static RoamViewWedge from_camera(const Camera& camera, double min_y, double max_y);
 
+    // The lines a point in XZ lies strictly beyond, as a bit mask (Cohen-
+    // Sutherland style): kBehindLeft, kBehindRight, kBehindEye, kBeyondFar.
+    // Always 0 when the wedge is disabled. ROAM computes it once per vertex.
+    enum Outcode : std::uint8_t { kBehindLeft = 1, kBehindRight = 2, kBehindEye = 4, kBeyondFar = 8 };
+    std::uint8_t outcode(const glm::dvec2& p) const;
+
     // True when the triangle (a, b, c) in XZ certainly lies outside the view:
-    // all three corners behind one side line, behind the eye or beyond far.
-    // Half-plane tests, so a triangle inside an outside one is outside too.
-    bool outside(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) const;
+    // all three corners behind one side line, behind the eye or beyond far,
+    // i.e. their outcodes share a bit. Half-plane tests, so a triangle inside
+    // an outside one is outside too.
+    static bool outside(std::uint8_t a, std::uint8_t b, std::uint8_t c) { return (a & b & c) != 0; }
+    bool outside(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) const {
+        return outside(outcode(a), outcode(b), outcode(c));
+    }
 };
 
 } // namespace overflight

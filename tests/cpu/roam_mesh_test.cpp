@@ -192,15 +192,15 @@ TEST(RoamMesh, OutsideTheWedgeStaysCoarsest) {
         const RoamStats s = roam.tessellate(camera_at(640, 640, 900, heading, 50), 3000);
         ASSERT_GE(int(s.triangles), 2998);
         const auto& nodes = roam.nodes();
-        auto invisible = [&](std::int32_t i) { return (nodes[std::size_t(i)].flags & RoamMesh::kInvisible) != 0; };
+        auto invisible = [&](std::int32_t i) { return (nodes[std::size_t(i)].flags() & RoamMesh::kInvisible) != 0; };
+        auto split = [&](std::int32_t i) { return (nodes[std::size_t(i)].flags() & RoamMesh::kSplit) != 0; };
         auto split_into_leaves = [&](std::int32_t i) {
-            const auto& n = nodes[std::size_t(i)];
-            return n.child >= 0 && nodes[std::size_t(n.child)].child < 0 && nodes[std::size_t(n.child) + 1].child < 0;
+            return split(i) && !split(roam.child(std::size_t(i))) && !split(roam.child(std::size_t(i)) + 1);
         };
         int mergeable = 0, invisible_leaves = 0, visible_leaves = 0, invisible_splits = 0;
         for (std::size_t i = 0; i < nodes.size(); ++i) {
             const auto& n = nodes[i];
-            if (n.child < 0) {
+            if (!split(std::int32_t(i))) {
                 (invisible(std::int32_t(i)) ? invisible_leaves : visible_leaves) += 1;
                 continue;
             }
@@ -228,15 +228,15 @@ TEST(RoamMesh, FocusReachesTheFinestLevel) {
     int focus_leaves = 0;
     for (std::size_t i = 0; i < roam.nodes().size(); ++i) {
         const auto& n = roam.nodes()[i];
-        if (n.child >= 0 || !(n.flags & RoamMesh::kFocus)) continue;
+        if ((n.flags() & RoamMesh::kSplit) || !(n.flags() & RoamMesh::kFocus)) continue;
         ++focus_leaves;
-        EXPECT_EQ(n.level, roam.variance().finest_level());
+        EXPECT_EQ(n.level(), roam.variance().finest_level());
     }
     EXPECT_GE(focus_leaves, 1);
     // Without the focus the same area stays coarse.
     roam.tessellate(camera_at(640, 640, 900, 0), 200);
     int finest = 0;
-    for (const auto& n : roam.nodes()) finest += n.child < 0 && n.level == roam.variance().finest_level();
+    for (const auto& n : roam.nodes()) finest += !(n.flags() & RoamMesh::kSplit) && n.level() == roam.variance().finest_level();
     EXPECT_EQ(finest, 0);
 }
 
