@@ -1,10 +1,13 @@
 #include "TerrainOptions.h"
 
+#include "core/Error.h"
+#include "io/TileDirectory.h"
+
 namespace overflight::app {
 
 void add_terrain_options(CLI::App& cmd, TerrainArgs& args) {
     cmd.add_option("terrain", args.terrain,
-                   "demo | hovercraft data set directory (map, hf.pgm, color.ppm) | any raster GDAL reads")
+                   "demo | hovercraft data set directory (map, hf.pgm, color.ppm) | tile directory | any raster GDAL reads")
         ->required();
     cmd.add_option("--color", args.load.color_path,
                    "color raster for a GDAL DEM (orthophoto, Landsat bands 3,2,1, ...), resampled onto the DEM grid");
@@ -13,5 +16,11 @@ void add_terrain_options(CLI::App& cmd, TerrainArgs& args) {
 }
 
 DataSet load_terrain(const TerrainArgs& args) { return overflight::load_terrain(args.terrain, args.load); }
+
+DataSet load_terrain_lazily(const TerrainArgs& args) {
+    if (!is_tile_directory(args.terrain)) return load_terrain(args);
+    if (!args.load.color_path.empty()) throw Error("--color", "a tile directory brings its own colors");
+    return load_tile_directory_overview(args.terrain);
+}
 
 } // namespace overflight::app

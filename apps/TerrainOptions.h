@@ -25,4 +25,11 @@ void add_terrain_options(CLI::App& cmd, TerrainArgs& args);
 // load_terrain(args.terrain, args.load); throws overflight::Error.
 DataSet load_terrain(const TerrainArgs& args);
 
+// As load_terrain, except that a tile directory (`overflight tile`) is opened
+// as an overview of at most 2049 samples per side over the same world extent
+// (io/TileDirectory.h), for commands whose renderer reads the full-resolution
+// tiles lazily (quadtree) or that only describe the terrain (info): a terrain
+// larger than memory then stays on disk.
+DataSet load_terrain_lazily(const TerrainArgs& args);
+
 } // namespace overflight::app

@@ -221,7 +221,8 @@ void add_bench_command(CLI::App& app) {
         std::unique_ptr<tbb::global_control> limit;
         if (args->threads > 0)
             limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, args->threads);
-        const DataSet data = load_terrain(args->terrain);
+        const bool lazy = std::all_of(methods.begin(), methods.end(), [](const RenderMethod* m) { return m->name == "quadtree"; });
+        const DataSet data = lazy ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
         CameraArgs cam_args = args->camera;
         if (!cam_args.far) cam_args.far = 2048.0 * data.terrain.h_scale(); // "far 2048 samples"
         const Camera camera = make_camera(cam_args, data, 1920, 1080);
@@ -232,7 +233,8 @@ void add_bench_command(CLI::App& app) {
         std::optional<DepthImage> mesh_depth;
         for (const RenderMethod* m : methods) {
             nlohmann::json run = bench_method(*m, session, camera, args->frames);
-            if (m->name == "roam" || m->name == "quadtree") {
+            // Against the full mesh of the same samples (not of a tile directory's overview).
+            if (!lazy && (m->name == "roam" || m->name == "quadtree")) {
                 if (!mesh_depth) {
                     session.want_depth = true;
                     ColorImage color;

@@ -19,7 +19,7 @@ void add_info_command(CLI::App& app) {
     add_terrain_options(*cmd, args->terrain);
     cmd->add_flag("--json", args->json, "print one JSON object");
     cmd->callback([args] {
-        const DataSet data = load_terrain(args->terrain);
+        const DataSet data = load_terrain_lazily(args->terrain);
         const std::string report = args->json ? terrain_report_json(data) : terrain_report_text(data);
         std::fwrite(report.data(), 1, report.size(), stdout);
     });

@@ -42,7 +42,8 @@ void add_render_command(CLI::App& app) {
     cmd->callback([args] {
         const RenderMethod* method = &find_render_method(args->method);
         auto t0 = std::chrono::steady_clock::now();
-        const DataSet data = load_terrain(args->terrain);
+        const DataSet data =
+            method->name == "quadtree" ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
         const double ms_load = ms_since(t0);
         const Camera camera = make_camera(args->camera, data, 1280, 720);
         RenderSession session(data, args->settings,

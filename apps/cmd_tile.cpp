@@ -28,13 +28,6 @@ void add_tile_command(CLI::App& app) {
         TileWriteOptions o;
         o.tile_size = args->tile_size;
         o.terminal_progress = true;
-        // Carry the source's own georeferencing when the terrain grid is the
-        // raster's grid (not reprojected, same size).
-        int rows = 0, cols = 0;
-        if (!data.info.reprojected &&
-            read_georeferencing(args->terrain.terrain, o.geotransform, o.crs_wkt, rows, cols) &&
-            rows == data.terrain.rows() && cols == data.terrain.cols())
-            o.georeferenced = true;
         const TileWriteReport r = write_tile_directory(data, args->out, o);
         std::printf("%s: %dx%d tiles of %d samples, %d written, %d already done, %d without data (flag 0)\n",
                     args->out.c_str(), r.index.grid.tile_rows, r.index.grid.tile_cols, r.index.grid.tile_size, r.written,

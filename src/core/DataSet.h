@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +45,13 @@ struct TerrainInfo {
     std::string nodata_method;     // how no-data was filled
     std::string color_source;      // "color.ppm", a raster path, "elevation ramp + hillshade", "procedural"
     int source_rows = 0, source_cols = 0;
+    // Georeferencing of the terrain grid as loaded (after any reprojection),
+    // GDAL convention: sample (row i, col j) is the pixel whose top-left
+    // corner is (gt[0] + j gt[1] + i gt[2], gt[3] + j gt[4] + i gt[5]) in
+    // crs_wkt's units. `tile` copies it into every tile, offset to the tile.
+    bool georeferenced = false;
+    std::array<double, 6> geotransform{0, 1, 0, 0, 0, 1};
+    std::string crs_wkt; // empty if none
     std::vector<std::pair<std::string, std::string>> metadata; // GDAL metadata (USGS Record A fields, ...)
 };
 

@@ -426,6 +426,11 @@ DataSet load_gdal_raster(const std::string& path, const std::string& color_path)
     }
     const HeightMapping mapping = choose_height_mapping(lo, hi, integral);
     data.terrain = Terrain(grid.rows, grid.cols, float(hs), mapping.v_scale, mapping.y_offset);
+    info.georeferenced = grid.georeferenced;
+    if (grid.georeferenced) {
+        std::copy(grid.gt, grid.gt + 6, info.geotransform.begin());
+        info.crs_wkt = grid.wkt;
+    }
     quantise_heights(grid.z, mapping, data.terrain.heights());
 
     if (!color_path.empty()) {

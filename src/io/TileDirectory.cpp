@@ -27,9 +27,19 @@ namespace overflight {
 
 namespace {
 
-std::string tile_name(int r, int c, bool rgb) {
-    return "r" + std::to_string(r) + "_c" + std::to_string(c) + (rgb ? "_rgb.tif" : ".tif");
+enum class TileFile { Heights, Colors, Apron };
+
+std::string tile_name(int r, int c, TileFile f) {
+    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif"};
+    return "r" + std::to_string(r) + "_c" + std::to_string(c) + suffix[int(f)];
 }
+
+std::string tile_path(const std::string& dir, int r, int c, TileFile f) {
+    return (fs::path(dir) / tile_name(r, c, f)).string();
+}
+
+const char* const kOverviewHeights = "overview.tif";
+const char* const kOverviewColors = "overview_rgb.tif";
 
 std::array<double, 6> tile_geotransform(const TileIndex& ix, int r, int c) {
     std::array<double, 6> gt = ix.geotransform;
@@ -64,14 +74,21 @@ json index_to_json(const TileIndex& ix) {
                 {"exists", exists},
                 {"min_height", lo},
                 {"max_height", hi},
-                {"source_rows", ix.source_rows},
-                {"source_cols", ix.source_cols},
+                {"source_rows", g.source_rows},
+                {"source_cols", g.source_cols},
                 {"padded_size", ix.padded_size},
                 {"h_scale", g.h_scale},
                 {"height_mapping", {{"v_scale", g.v_scale}, {"y_offset", g.y_offset}, {"units", "metre"}}},
                 {"georeferenced", ix.georeferenced},
                 {"geotransform", ix.geotransform},
-                {"crs", ix.crs_wkt}};
+                {"crs", ix.crs_wkt},
+                {"apron", ix.apron},
+                {"overview", ix.overview_stride > 1 ? json{{"stride", ix.overview_stride},
+                                                            {"rows", ix.overview_rows},
+                                                            {"cols", ix.overview_cols},
+                                                            {"heights", kOverviewHeights},
+                                                            {"colors", kOverviewColors}}
+                                                      : json(nullptr)}};
 }
 
 void write_index(const std::string& dir, const TileIndex& ix) {
@@ -83,17 +100,22 @@ void write_index(const std::string& dir, const TileIndex& ix) {
     });
 }
 
-void set_georeferencing(GDALDatasetH ds, const std::array<double, 6>& gt, const std::string& wkt) {
-    double g[6];
-    std::copy(gt.begin(), gt.end(), g);
-    GDALSetGeoTransform(ds, g);
-    if (!wkt.empty()) GDALSetProjection(ds, wkt.c_str());
-}
+// One GeoTIFF written atomically: `bands` planes of cols x rows samples of
+// `type` (band b at data + b * plane bytes), with a geotransform and CRS when
+// `gt` is given, and for heights the index's metre mapping as band
+// scale/offset so that GIS tools read metres.
+struct RasterSpec {
+    int cols = 0, rows = 0, bands = 1;
+    GDALDataType type = GDT_UInt16;
+    const void* data = nullptr;
+    const std::array<double, 6>* gt = nullptr;
+    std::string wkt;
+    const TileGrid* height_mapping = nullptr;
+    bool rgb = false;
+};
 
-void write_tile_files(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t) {
+void write_raster(const std::string& path, const RasterSpec& spec) {
     GDALDriverH gtiff = GDALGetDriverByName("GTiff");
-    const int n = ix.grid.tile_size;
-    const auto gt = tile_geotransform(ix, r, c);
     char** co = nullptr;
     co = CSLSetNameValue(co, "COMPRESS", "DEFLATE");
     co = CSLSetNameValue(co, "PREDICTOR", "2");
@@ -101,46 +123,118 @@ void write_tile_files(const std::string& dir, const TileIndex& ix, int r, int c,
         char** p;
         ~OptionsFree() { CSLDestroy(p); }
     } co_free{co};
-    const std::string rgb_path = (fs::path(dir) / tile_name(r, c, true)).string();
-    write_atomically(rgb_path, [&](const std::string& tmp) {
-        gdal::Dataset ds(GDALCreate(gtiff, tmp.c_str(), n, n, 3, GDT_Byte, co));
-        if (!ds) throw Error(rgb_path, "cannot create: " + gdal::last_error("GTiff"));
-        set_georeferencing(ds.get(), gt, ix.crs_wkt);
-        std::vector<std::uint8_t> band(std::size_t(n) * std::size_t(n));
-        for (int b = 0; b < 3; ++b) {
-            for (std::size_t i = 0; i < band.size(); ++i) {
-                const Rgb8 px = t.samples.colors()[i];
-                band[i] = b == 0 ? px.r : b == 1 ? px.g : px.b;
-            }
+    write_atomically(path, [&](const std::string& tmp) {
+        gdal::Dataset ds(GDALCreate(gtiff, tmp.c_str(), spec.cols, spec.rows, spec.bands, spec.type, co));
+        if (!ds) throw Error(path, "cannot create: " + gdal::last_error("GTiff"));
+        if (spec.gt) {
+            double g[6];
+            std::copy(spec.gt->begin(), spec.gt->end(), g);
+            GDALSetGeoTransform(ds.get(), g);
+            if (!spec.wkt.empty()) GDALSetProjection(ds.get(), spec.wkt.c_str());
+        }
+        const std::size_t plane =
+            std::size_t(spec.cols) * std::size_t(spec.rows) * std::size_t(GDALGetDataTypeSizeBytes(spec.type));
+        for (int b = 0; b < spec.bands; ++b) {
             GDALRasterBandH h = GDALGetRasterBand(ds.get(), b + 1);
-            GDALSetRasterColorInterpretation(h, b == 0 ? GCI_RedBand : b == 1 ? GCI_GreenBand : GCI_BlueBand);
-            if (GDALRasterIO(h, GF_Write, 0, 0, n, n, band.data(), n, n, GDT_Byte, 0, 0) != CE_None)
-                throw Error(rgb_path, "cannot write: " + gdal::last_error("I/O error"));
+            if (spec.rgb)
+                GDALSetRasterColorInterpretation(h, b == 0 ? GCI_RedBand : b == 1 ? GCI_GreenBand : GCI_BlueBand);
+            if (spec.height_mapping) {
+                GDALSetRasterScale(h, spec.height_mapping->v_scale);
+                GDALSetRasterOffset(h, spec.height_mapping->y_offset);
+                GDALSetRasterUnitType(h, "metre");
+            }
+            auto* p = const_cast<unsigned char*>(static_cast<const unsigned char*>(spec.data)) + std::size_t(b) * plane;
+            if (GDALRasterIO(h, GF_Write, 0, 0, spec.cols, spec.rows, p, spec.cols, spec.rows, spec.type, 0, 0) !=
+                CE_None)
+                throw Error(path, "cannot write: " + gdal::last_error("I/O error"));
         }
         // Closing flushes the file: a failure there (disk full) must not pass.
         CPLErrorReset();
         GDALClose(ds.release());
         if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
-            throw Error(rgb_path, "cannot write: " + gdal::last_error("close failed"));
+            throw Error(path, "cannot write: " + gdal::last_error("close failed"));
     });
-    const std::string h_path = (fs::path(dir) / tile_name(r, c, false)).string();
-    write_atomically(h_path, [&](const std::string& tmp) {
-        gdal::Dataset ds(GDALCreate(gtiff, tmp.c_str(), n, n, 1, GDT_UInt16, co));
-        if (!ds) throw Error(h_path, "cannot create: " + gdal::last_error("GTiff"));
-        set_georeferencing(ds.get(), gt, ix.crs_wkt);
-        GDALRasterBandH h = GDALGetRasterBand(ds.get(), 1);
-        GDALSetRasterScale(h, ix.grid.v_scale);
-        GDALSetRasterOffset(h, ix.grid.y_offset);
-        GDALSetRasterUnitType(h, "metre");
-        std::vector<std::uint16_t> v(t.samples.heights());
-        if (GDALRasterIO(h, GF_Write, 0, 0, n, n, v.data(), n, n, GDT_UInt16, 0, 0) != CE_None)
-            throw Error(h_path, "cannot write: " + gdal::last_error("I/O error"));
-        // Closing flushes the file: a failure there (disk full) must not pass.
-        CPLErrorReset();
-        GDALClose(ds.release());
-        if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
-            throw Error(h_path, "cannot write: " + gdal::last_error("close failed"));
-    });
+}
+
+// Colors as three planes (red, green, blue), the layout write_raster takes.
+std::vector<std::uint8_t> color_planes(const Terrain& t) {
+    const std::size_t n = t.colors().size();
+    std::vector<std::uint8_t> planes(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        planes[i] = t.colors()[i].r;
+        planes[n + i] = t.colors()[i].g;
+        planes[2 * n + i] = t.colors()[i].b;
+    }
+    return planes;
+}
+
+// Writes the colors, then the apron, then the heights: the heights file
+// appearing under its final name marks a finished tile.
+void write_tile_files(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t,
+                      const TileApron& apron) {
+    const int n = ix.grid.tile_size;
+    const auto gt = tile_geotransform(ix, r, c);
+    const std::vector<std::uint8_t> rgb = color_planes(t.samples);
+    write_raster(tile_path(dir, r, c, TileFile::Colors),
+                 {n, n, 3, GDT_Byte, rgb.data(), &gt, ix.crs_wkt, nullptr, true});
+    std::vector<std::uint16_t> sides;
+    for (const auto* side : {&apron.north, &apron.south, &apron.west, &apron.east})
+        sides.insert(sides.end(), side->begin(), side->end());
+    write_raster(tile_path(dir, r, c, TileFile::Apron), {n, 4, 1, GDT_UInt16, sides.data(), nullptr, "", nullptr, false});
+    write_raster(tile_path(dir, r, c, TileFile::Heights),
+                 {n, n, 1, GDT_UInt16, t.samples.heights().data(), &gt, ix.crs_wkt, &ix.grid, false});
+}
+
+// Every f-th sample of `t` (clamped to its last row and column, with the
+// padding's darkened colors there, as cut_tile does).
+Terrain decimate(const Terrain& t, int f, int rows, int cols) {
+    Terrain o(rows, cols, t.h_scale() * float(f), t.v_scale(), t.y_offset());
+    for (int i = 0; i < rows; ++i) {
+        const int gi = i * f, si = std::min(gi, t.rows() - 1);
+        for (int j = 0; j < cols; ++j) {
+            const int gj = j * f, sj = std::min(gj, t.cols() - 1);
+            o.raw(i, j) = t.raw(si, sj);
+            Rgb8 col = t.color(si, sj);
+            if (si != gi || sj != gj) col = Rgb8{std::uint8_t(col.r / 2), std::uint8_t(col.g / 2), std::uint8_t(col.b / 2)};
+            o.color(i, j) = col;
+        }
+    }
+    return o;
+}
+
+std::array<double, 6> scaled_geotransform(const std::array<double, 6>& gt, int f) {
+    return {gt[0], gt[1] * f, gt[2] * f, gt[3], gt[4] * f, gt[5] * f};
+}
+
+void write_overview(const std::string& dir, const TileIndex& ix, const Terrain& t) {
+    const Terrain o = decimate(t, ix.overview_stride, ix.overview_rows, ix.overview_cols);
+    const auto gt = scaled_geotransform(ix.geotransform, ix.overview_stride);
+    const std::vector<std::uint8_t> rgb = color_planes(o);
+    write_raster((fs::path(dir) / kOverviewColors).string(),
+                 {o.cols(), o.rows(), 3, GDT_Byte, rgb.data(), &gt, ix.crs_wkt, nullptr, true});
+    write_raster((fs::path(dir) / kOverviewHeights).string(),
+                 {o.cols(), o.rows(), 1, GDT_UInt16, o.heights().data(), &gt, ix.crs_wkt, &ix.grid, false});
+}
+
+// Reads `bands` planes of cols x rows samples of `type` from `path` into `out`.
+void read_raster(const std::string& path, int cols, int rows, int bands, GDALDataType type, void* out) {
+    gdal::Dataset ds = gdal::open_raster(path);
+    if (GDALGetRasterXSize(ds.get()) != cols || GDALGetRasterYSize(ds.get()) != rows ||
+        GDALGetRasterCount(ds.get()) != bands)
+        throw Error(path, "expected " + std::to_string(bands) + " band(s) of " + std::to_string(cols) + "x" +
+                              std::to_string(rows) + " samples");
+    const std::size_t plane = std::size_t(cols) * std::size_t(rows) * std::size_t(GDALGetDataTypeSizeBytes(type));
+    for (int b = 0; b < bands; ++b)
+        if (GDALRasterIO(GDALGetRasterBand(ds.get(), b + 1), GF_Read, 0, 0, cols, rows,
+                         static_cast<unsigned char*>(out) + std::size_t(b) * plane, cols, rows, type, 0, 0) != CE_None)
+            throw Error(path, "cannot read: " + gdal::last_error("I/O error"));
+}
+
+void read_colors(const std::string& path, Terrain& t) {
+    const std::size_t n = t.colors().size();
+    std::vector<std::uint8_t> planes(3 * n);
+    read_raster(path, t.cols(), t.rows(), 3, GDT_Byte, planes.data());
+    for (std::size_t i = 0; i < n; ++i) t.colors()[i] = Rgb8{planes[i], planes[n + i], planes[2 * n + i]};
 }
 
 TileIndex parse_index(const std::string& path, bool require_complete) {
@@ -166,12 +260,20 @@ TileIndex parse_index(const std::string& path, bool require_complete) {
         g.h_scale = j.at("h_scale").get<float>();
         g.v_scale = j.at("height_mapping").at("v_scale").get<float>();
         g.y_offset = j.at("height_mapping").at("y_offset").get<float>();
-        ix.source_rows = j.at("source_rows").get<int>();
-        ix.source_cols = j.at("source_cols").get<int>();
+        g.source_rows = j.at("source_rows").get<int>();
+        g.source_cols = j.at("source_cols").get<int>();
         ix.padded_size = j.at("padded_size").get<int>();
         ix.georeferenced = j.at("georeferenced").get<bool>();
         ix.geotransform = j.at("geotransform").get<std::array<double, 6>>();
         ix.crs_wkt = j.at("crs").get<std::string>();
+        // Written by later versions of the tiler; absent means none.
+        ix.apron = j.value("apron", false);
+        if (j.contains("overview") && !j.at("overview").is_null()) {
+            const auto& o = j.at("overview");
+            ix.overview_stride = o.at("stride").get<int>();
+            ix.overview_rows = o.at("rows").get<int>();
+            ix.overview_cols = o.at("cols").get<int>();
+        }
         const auto& ex = j.at("exists");
         const auto& lo = j.at("min_height");
         const auto& hi = j.at("max_height");
@@ -194,9 +296,14 @@ TileIndex parse_index(const std::string& path, bool require_complete) {
         throw Error(path, std::string("malformed index: ") + e.what());
     }
     ix.grid.validate(path);
-    if (ix.padded_size != ix.grid.tile_rows * ix.grid.stride() + 1 || ix.source_rows < 2 || ix.source_cols < 2 ||
-        ix.source_rows > ix.padded_size || ix.source_cols > ix.padded_size)
+    if (ix.padded_size != ix.grid.padded_rows() || ix.padded_size != ix.grid.padded_cols())
         throw Error(path, "source and padded sizes do not match the tile grid");
+    if (ix.overview_stride != 0) {
+        const int k = ix.overview_stride;
+        if (k < 2 || k > 65536 || (k & (k - 1)) != 0 ||
+            ix.overview_rows != (ix.grid.source_rows - 2) / k + 2 || ix.overview_cols != (ix.grid.source_cols - 2) / k + 2)
+            throw Error(path, "overview stride and size do not match the source");
+    }
     if (require_complete && !ix.complete)
         throw Error(path, "tiling did not finish (interrupted?); run `overflight tile` again to complete it");
     return ix;
@@ -222,25 +329,38 @@ std::string terrain_checksum(const Terrain& t) {
     return buf;
 }
 
+int overview_stride(int rows, int cols, int max_side) {
+    if (max_side < 2) throw Error("overview", "at least 2 samples per side are needed");
+    const int n = std::max(rows, cols);
+    int f = 1;
+    while ((n - 2) / f + 2 > max_side) f *= 2;
+    return f;
+}
+
 TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir, const TileWriteOptions& options) {
     gdal::ensure_initialised();
     const Terrain& t = data.terrain;
     TileWriteReport report;
     TileIndex& ix = report.index;
     ix.grid = terrain_tile_grid(t, options.tile_size);
-    ix.source_rows = t.rows();
-    ix.source_cols = t.cols();
-    ix.padded_size = ix.grid.tile_rows * ix.grid.stride() + 1;
+    ix.padded_size = ix.grid.padded_rows();
     ix.source = data.info.source;
     ix.checksum = terrain_checksum(t);
-    ix.georeferenced = options.georeferenced;
-    ix.crs_wkt = options.crs_wkt;
-    if (options.georeferenced) {
-        ix.geotransform = options.geotransform;
+    ix.georeferenced = data.info.georeferenced;
+    ix.crs_wkt = data.info.georeferenced ? data.info.crs_wkt : std::string();
+    if (data.info.georeferenced) {
+        ix.geotransform = data.info.geotransform;
     } else {
         // Local frame: pixel (j, i) centre at X = hs j, Y = -hs i (north up).
         const double hs = t.h_scale();
         ix.geotransform = {-0.5 * hs, hs, 0, 0.5 * hs, 0, -hs};
+    }
+    ix.apron = true;
+    const int f = overview_stride(t.rows(), t.cols(), options.overview_max_side);
+    if (f > 1) {
+        ix.overview_stride = f;
+        ix.overview_rows = (t.rows() - 2) / f + 2;
+        ix.overview_cols = (t.cols() - 2) / f + 2;
     }
 
     std::error_code ec;
@@ -250,17 +370,18 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
     for (const auto& e : fs::directory_iterator(dir, ec)) {
         const std::string name = e.path().filename().string();
         if (name.size() > 1 && name[0] == '.' && name.find(".tmp") != std::string::npos &&
-            (name.rfind(".r", 0) == 0 || name.rfind(".index.json", 0) == 0))
+            (name.rfind(".r", 0) == 0 || name.rfind(".index.json", 0) == 0 || name.rfind(".overview", 0) == 0))
             fs::remove(e.path(), ec);
     }
-    // Resume only a run of the same source and tile size; otherwise start over.
+    // Resume only a run of the same source, tile size and layout; otherwise start over.
     bool resume = false;
     const std::string index_path = (fs::path(dir) / "index.json").string();
     if (fs::exists(index_path)) {
         try {
             const TileIndex old = parse_index(index_path, false);
             resume = old.checksum == ix.checksum && old.grid.tile_size == ix.grid.tile_size &&
-                     old.geotransform == ix.geotransform && old.crs_wkt == ix.crs_wkt;
+                     old.geotransform == ix.geotransform && old.crs_wkt == ix.crs_wkt && old.apron &&
+                     old.overview_stride == ix.overview_stride;
         } catch (const Error&) {
             resume = false;
         }
@@ -268,21 +389,30 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
     ix.complete = false;
     write_index(dir, ix);
 
+    const fs::path ov_heights = fs::path(dir) / kOverviewHeights, ov_colors = fs::path(dir) / kOverviewColors;
+    if (f == 1) {
+        fs::remove(ov_heights, ec); // left over from a larger source
+        fs::remove(ov_colors, ec);
+    } else if (!(resume && fs::exists(ov_heights) && fs::exists(ov_colors))) {
+        write_overview(dir, ix, t);
+    }
+
     const int total = ix.grid.tile_rows * ix.grid.tile_cols;
     const bool progress = options.terminal_progress && ::isatty(2);
     int done = 0;
     for (int r = 0; r < ix.grid.tile_rows; ++r)
         for (int c = 0; c < ix.grid.tile_cols; ++c) {
-            const std::string h_path = (fs::path(dir) / tile_name(r, c, false)).string();
-            const std::string rgb_path = (fs::path(dir) / tile_name(r, c, true)).string();
+            const std::string paths[] = {tile_path(dir, r, c, TileFile::Heights), tile_path(dir, r, c, TileFile::Colors),
+                                         tile_path(dir, r, c, TileFile::Apron)};
             if (!ix.grid.present(r, c)) {
                 ++report.empty;
-                fs::remove(h_path, ec); // left over from an earlier tiling of another source
-                fs::remove(rgb_path, ec);
-            } else if (resume && fs::exists(h_path) && fs::exists(rgb_path)) {
+                for (const auto& p : paths) fs::remove(p, ec); // left over from an earlier tiling of another source
+            } else if (resume && std::all_of(std::begin(paths), std::end(paths), [](const std::string& p) {
+                           return fs::exists(p);
+                       })) {
                 ++report.skipped;
             } else {
-                write_tile_files(dir, ix, r, c, cut_tile(t, ix.grid, r, c, false));
+                write_tile_files(dir, ix, r, c, cut_tile(t, ix.grid, r, c, false), cut_apron(t, ix.grid, r, c));
                 ++report.written;
             }
             ++done;
@@ -303,34 +433,23 @@ TileIndex read_tile_index(const std::string& dir) {
     return parse_index((fs::path(dir) / "index.json").string(), true);
 }
 
-TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c) {
+TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c, bool with_normals) {
     const int n = ix.grid.tile_size;
     TileSamples t{Terrain(n, n, ix.grid.h_scale, ix.grid.v_scale, ix.grid.y_offset), {}};
-    const std::string h_path = (fs::path(dir) / tile_name(r, c, false)).string();
-    const std::string rgb_path = (fs::path(dir) / tile_name(r, c, true)).string();
+    const std::string h_path = tile_path(dir, r, c, TileFile::Heights);
     if (!ix.grid.present(r, c)) throw Error(h_path, "tile is flagged 0 (no data) in index.json");
-    {
-        gdal::Dataset ds = gdal::open_raster(h_path);
-        if (GDALGetRasterXSize(ds.get()) != n || GDALGetRasterYSize(ds.get()) != n || GDALGetRasterCount(ds.get()) < 1)
-            throw Error(h_path, "expected " + std::to_string(n) + "x" + std::to_string(n) + " samples");
-        if (GDALRasterIO(GDALGetRasterBand(ds.get(), 1), GF_Read, 0, 0, n, n, t.samples.heights().data(), n, n,
-                         GDT_UInt16, 0, 0) != CE_None)
-            throw Error(h_path, "cannot read: " + gdal::last_error("I/O error"));
-    }
-    {
-        gdal::Dataset ds = gdal::open_raster(rgb_path);
-        if (GDALGetRasterXSize(ds.get()) != n || GDALGetRasterYSize(ds.get()) != n || GDALGetRasterCount(ds.get()) != 3)
-            throw Error(rgb_path, "expected 3 bands of " + std::to_string(n) + "x" + std::to_string(n));
-        std::vector<std::uint8_t> band(std::size_t(n) * std::size_t(n));
-        for (int b = 0; b < 3; ++b) {
-            if (GDALRasterIO(GDALGetRasterBand(ds.get(), b + 1), GF_Read, 0, 0, n, n, band.data(), n, n, GDT_Byte, 0,
-                             0) != CE_None)
-                throw Error(rgb_path, "cannot read: " + gdal::last_error("I/O error"));
-            for (std::size_t i = 0; i < band.size(); ++i) {
-                Rgb8& px = t.samples.colors()[i];
-                (b == 0 ? px.r : b == 1 ? px.g : px.b) = band[i];
-            }
-        }
+    read_raster(h_path, n, n, 1, GDT_UInt16, t.samples.heights().data());
+    read_colors(tile_path(dir, r, c, TileFile::Colors), t.samples);
+    if (with_normals && ix.apron) {
+        std::vector<std::uint16_t> sides(4 * std::size_t(n));
+        read_raster(tile_path(dir, r, c, TileFile::Apron), n, 4, 1, GDT_UInt16, sides.data());
+        TileApron a;
+        const auto side = [&](int k) { return std::vector<std::uint16_t>(sides.begin() + k * n, sides.begin() + (k + 1) * n); };
+        a.north = side(0);
+        a.south = side(1);
+        a.west = side(2);
+        a.east = side(3);
+        t.normals = tile_normals(t.samples, a, ix.grid, r, c);
     }
     return t;
 }
@@ -339,15 +458,43 @@ TileLoader tile_directory_loader(const std::string& dir, const TileIndex& index)
     return [dir, index](int r, int c) { return read_tile(dir, index, r, c); };
 }
 
+namespace {
+
+// info of a tile directory, for both loaders.
+void fill_info(TerrainInfo& info, const std::string& dir, const TileIndex& ix) {
+    info.source = dir;
+    info.kind = "tiles";
+    info.driver = "GTiff";
+    info.color_source = "tile _rgb.tif files";
+    info.source_rows = ix.grid.source_rows;
+    info.source_cols = ix.grid.source_cols;
+    info.georeferenced = ix.georeferenced;
+    info.geotransform = ix.geotransform;
+    info.crs_wkt = ix.crs_wkt;
+    if (!ix.crs_wkt.empty()) {
+        OGRSpatialReferenceH srs = OSRNewSpatialReference(ix.crs_wkt.c_str());
+        if (srs) {
+            if (const char* name = OSRGetName(srs)) info.crs = name;
+            OSRDestroySpatialReference(srs);
+        }
+    }
+    info.metadata.emplace_back("tile_size", std::to_string(ix.grid.tile_size));
+    info.metadata.emplace_back("tiles", std::to_string(ix.grid.tile_rows) + "x" + std::to_string(ix.grid.tile_cols));
+    info.metadata.emplace_back("checksum", ix.checksum);
+    info.metadata.emplace_back("tiled_from", ix.source);
+}
+
+} // namespace
+
 DataSet load_tile_directory(const std::string& dir) {
     const TileIndex ix = read_tile_index(dir);
     DataSet d;
-    Terrain t(ix.source_rows, ix.source_cols, ix.grid.h_scale, ix.grid.v_scale, ix.grid.y_offset);
+    Terrain t(ix.grid.source_rows, ix.grid.source_cols, ix.grid.h_scale, ix.grid.v_scale, ix.grid.y_offset);
     const int s = ix.grid.stride();
     for (int r = 0; r < ix.grid.tile_rows; ++r)
         for (int c = 0; c < ix.grid.tile_cols; ++c) {
             if (!ix.grid.present(r, c)) continue;
-            const TileSamples tile = read_tile(dir, ix, r, c);
+            const TileSamples tile = read_tile(dir, ix, r, c, false);
             for (int i = 0; i < ix.grid.tile_size && r * s + i < t.rows(); ++i)
                 for (int j = 0; j < ix.grid.tile_size && c * s + j < t.cols(); ++j) {
                     t.raw(r * s + i, c * s + j) = tile.samples.raw(i, j);
@@ -355,23 +502,62 @@ DataSet load_tile_directory(const std::string& dir) {
                 }
         }
     d.terrain = std::move(t);
-    d.info.source = dir;
-    d.info.kind = "tiles";
-    d.info.driver = "GTiff";
-    d.info.color_source = "tile _rgb.tif files";
-    d.info.source_rows = ix.source_rows;
-    d.info.source_cols = ix.source_cols;
-    if (!ix.crs_wkt.empty()) {
-        OGRSpatialReferenceH srs = OSRNewSpatialReference(ix.crs_wkt.c_str());
-        if (srs) {
-            if (const char* name = OSRGetName(srs)) d.info.crs = name;
-            OSRDestroySpatialReference(srs);
+    fill_info(d.info, dir, ix);
+    return d;
+}
+
+DataSet load_tile_directory_overview(const std::string& dir, int max_side) {
+    const TileIndex ix = read_tile_index(dir);
+    const TileGrid& g = ix.grid;
+    const int f = overview_stride(g.source_rows, g.source_cols, max_side);
+    if (f == 1) return load_tile_directory(dir);
+    const int rows = (g.source_rows - 2) / f + 2, cols = (g.source_cols - 2) / f + 2;
+    DataSet d;
+    if (ix.overview_stride > 1 && f % ix.overview_stride == 0) {
+        // The stored overview, decimated further when a smaller one is asked for.
+        Terrain stored(ix.overview_rows, ix.overview_cols, g.h_scale * float(ix.overview_stride), g.v_scale, g.y_offset);
+        read_raster((fs::path(dir) / kOverviewHeights).string(), stored.cols(), stored.rows(), 1, GDT_UInt16,
+                    stored.heights().data());
+        read_colors((fs::path(dir) / kOverviewColors).string(), stored);
+        const int k = f / ix.overview_stride;
+        if (k == 1) {
+            d.terrain = std::move(stored);
+        } else {
+            // Stored sample (i k) is source sample min(i f, rows - 1), as decimate() picks it.
+            d.terrain = Terrain(rows, cols, g.h_scale * float(f), g.v_scale, g.y_offset);
+            for (int i = 0; i < rows; ++i)
+                for (int j = 0; j < cols; ++j) {
+                    const int si = std::min(i * k, stored.rows() - 1), sj = std::min(j * k, stored.cols() - 1);
+                    d.terrain.raw(i, j) = stored.raw(si, sj);
+                    d.terrain.color(i, j) = stored.color(si, sj);
+                }
         }
+    } else {
+        // From the tiles, one at a time: memory stays at one tile plus the overview.
+        d.terrain = Terrain(rows, cols, g.h_scale * float(f), g.v_scale, g.y_offset);
+        const int s = g.stride();
+        for (int r = 0; r < g.tile_rows; ++r)
+            for (int c = 0; c < g.tile_cols; ++c) {
+                if (!g.present(r, c)) continue;
+                const TileSamples tile = read_tile(dir, ix, r, c, false);
+                // Overview samples whose (clamped) source sample lies in this tile.
+                for (int i = 0; i < rows; ++i) {
+                    const int gi = std::min(i * f, g.source_rows - 1) - r * s;
+                    if (gi < 0 || gi >= g.tile_size) continue;
+                    for (int j = 0; j < cols; ++j) {
+                        const int gj = std::min(j * f, g.source_cols - 1) - c * s;
+                        if (gj < 0 || gj >= g.tile_size) continue;
+                        d.terrain.raw(i, j) = tile.samples.raw(gi, gj);
+                        Rgb8 col = tile.samples.color(gi, gj);
+                        if (std::min(i * f, g.source_rows - 1) != i * f || std::min(j * f, g.source_cols - 1) != j * f)
+                            col = Rgb8{std::uint8_t(col.r / 2), std::uint8_t(col.g / 2), std::uint8_t(col.b / 2)};
+                        d.terrain.color(i, j) = col;
+                    }
+                }
+            }
     }
-    d.info.metadata.emplace_back("tile_size", std::to_string(ix.grid.tile_size));
-    d.info.metadata.emplace_back("tiles", std::to_string(ix.grid.tile_rows) + "x" + std::to_string(ix.grid.tile_cols));
-    d.info.metadata.emplace_back("checksum", ix.checksum);
-    d.info.metadata.emplace_back("tiled_from", ix.source);
+    fill_info(d.info, dir, ix);
+    d.info.metadata.emplace_back("overview_stride", std::to_string(f));
     return d;
 }
 
@@ -390,6 +576,20 @@ bool read_georeferencing(const std::string& path, std::array<double, 6>& gt, std
     rows = GDALGetRasterYSize(ds);
     cols = GDALGetRasterXSize(ds);
     return true;
+}
+
+BandMapping read_band_mapping(const std::string& path) {
+    gdal::Dataset ds = gdal::open_raster(path);
+    GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+    BandMapping m;
+    int has = 0;
+    const double scale = GDALGetRasterScale(band, &has);
+    if (has) m.scale = scale;
+    const double offset = GDALGetRasterOffset(band, &has);
+    if (has) m.offset = offset;
+    const char* unit = GDALGetRasterUnitType(band);
+    m.unit = unit ? unit : "";
+    return m;
 }
 
 } // namespace overflight

@@ -15,10 +15,12 @@
 //                        culling before loading), source rows/cols and
 //                        padded size, h_scale, height mapping (v_scale,
 //                        y_offset: metres = v_scale * raw + y_offset), crs
-//                        (WKT, may be empty), geotransform (of the padded
-//                        grid's sample 0,0 corner), source checksum
+//                        (WKT, may be empty), geotransform (of the terrain
+//                        grid's sample 0,0 pixel corner), source checksum
 //                        (FNV-1a 64 of the source samples, colors and
-//                        mapping), complete (false while tiling runs).
+//                        mapping), apron (true: every tile has an apron
+//                        file), overview (null or its stride and size),
+//                        complete (false while tiling runs).
 //   r{R}_c{C}.tif        heights: 1 band UInt16, tile_size^2, DEFLATE,
 //                        SetScale(v_scale)/SetOffset(y_offset) so GIS tools
 //                        read metres, the source CRS and a geotransform on the
@@ -27,6 +29,17 @@
 //   r{R}_c{C}_rgb.tif    colors: 3 bands Byte (red, green, blue), same grid.
 //                        A separate file because GeoTIFF bands share one data
 //                        type: RGB as UInt16 bands would double its size.
+//   r{R}_c{C}_apron.tif  the raw samples just outside the tile (lod/TileSet.h
+//                        TileApron): 4 rows of tile_size UInt16 (north, south,
+//                        west, east), so that the loader computes normals at
+//                        the tile's edges from both sides and seams are not lit
+//                        differently; not georeferenced (not a map).
+//   overview.tif,        every f-th sample of the terrain (f a power of two,
+//   overview_rgb.tif     the smallest that keeps the overview within 2049
+//                        samples per side), heights and colors as the tiles,
+//                        georeferenced; written only when f > 1. It lets a
+//                        renderer place its camera and answer height queries
+//                        without loading a terrain larger than memory.
 // Every file is written to a temporary name and renamed; the heights file is
 // renamed last, so it marks a finished tile. A re-run with the same source and
 // tile size skips finished tiles; index.json is rewritten with
@@ -42,25 +55,23 @@
 namespace overflight {
 
 struct TileIndex {
-    TileGrid grid;
-    int source_rows = 0, source_cols = 0;
+    TileGrid grid; // includes the source size
     int padded_size = 0;
     std::string crs_wkt;
     bool georeferenced = false;
     std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
     std::string checksum;
     bool complete = false;
+    bool apron = false;       // r{R}_c{C}_apron.tif files exist (older directories: no)
+    int overview_stride = 0;  // 0: no overview files
+    int overview_rows = 0, overview_cols = 0;
     std::string source; // what was tiled (path or "demo")
 };
 
 struct TileWriteOptions {
     int tile_size = 257;
     bool terminal_progress = false; // GDALTermProgress on stderr
-    // Georeferencing of the terrain grid (sample 0,0 corner, GDAL convention);
-    // without it, a local metric frame: X = world X, Y = -world Z.
-    bool georeferenced = false;
-    std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
-    std::string crs_wkt;
+    int overview_max_side = 2049;   // see overview_stride()
     // Called after each tile with (tiles done, tiles total); returning false
     // stops the run as an interruption would (throws Error(dir, "interrupted")).
     std::function<bool(int, int)> on_tile;
@@ -74,7 +85,14 @@ struct TileWriteReport {
 // FNV-1a 64 of the terrain's size, scales, samples and colors, as 16 hex digits.
 std::string terrain_checksum(const Terrain& terrain);
 
-// Tiles `data.terrain` into `dir` (created if missing). Throws
+// The decimation of an overview: the smallest power of two f such that
+// every f-th sample of a rows x cols grid, ceil((n - 1) / f) + 1 per side,
+// fits in max_side (>= 2) samples per side.
+int overview_stride(int rows, int cols, int max_side);
+
+// Tiles `data.terrain` into `dir` (created if missing), carrying
+// data.info's georeferencing (without it, a local metric frame whose
+// projected X is world X and projected Y is -world Z). Throws
 // Error("--tile-size", ...) for a size that is not 2^k+1 >= 3, Error(dir or a
 // tile path, ...) for I/O failures.
 TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir, const TileWriteOptions& options);
@@ -86,21 +104,48 @@ bool is_tile_directory(const std::string& path);
 // malformed, inconsistent or incomplete.
 TileIndex read_tile_index(const std::string& dir);
 
-// Reads tile (r, c) (heights in raw units with the index's mapping, colors).
-// Throws Error(tile path, ...) when missing or of the wrong size.
-TileSamples read_tile(const std::string& dir, const TileIndex& index, int r, int c);
+// Reads tile (r, c): heights in raw units with the index's mapping, colors,
+// and with the apron files (index.apron) normals equal to the whole
+// terrain's (lod/TileSet.h tile_normals); without them, normals are left
+// empty (TileSet computes one-sided ones). with_normals = false skips the
+// apron. Throws Error(tile path, ...) when missing or of the wrong size.
+TileSamples read_tile(const std::string& dir, const TileIndex& index, int r, int c, bool with_normals = true);
 
 // A loader for TileSet that reads tiles from `dir`.
 TileLoader tile_directory_loader(const std::string& dir, const TileIndex& index);
 
 // The whole source terrain reassembled from the tiles (cropped to the source
-// size), for `info` and the non-tiled renderers; info.kind = "tiles".
+// size), for `info` and the non-tiled renderers; info.kind = "tiles",
+// info.georeferenced/geotransform/crs_wkt from the index.
 DataSet load_tile_directory(const std::string& dir);
+
+// A terrain of at most max_side (>= 2) samples per side standing in for the
+// tiled terrain without loading it: every f-th sample (f =
+// overview_stride(source rows, cols, max_side)), h_scale multiplied by f, so
+// that it covers the same world extent (rounded up to whole overview cells;
+// samples beyond the source repeat its edge, as the padded tiles do) and its
+// samples are exact source samples. For camera placement, heights under a
+// point and `info` when the renderer reads full-resolution tiles lazily
+// (TileSet over tile_directory_loader). Reads overview.tif when it was
+// written with a stride that divides f, otherwise every f-th sample from
+// the tiles one tile at a time; f = 1 is load_tile_directory(). info as
+// load_tile_directory, with source_rows/cols of the full terrain and
+// metadata "overview_stride". Throws as read_tile_index and read_tile.
+DataSet load_tile_directory_overview(const std::string& dir, int max_side = 2049);
 
 // Georeferencing of a GDAL raster (geotransform and CRS WKT), or false when
 // it is not a georeferenced raster. Used by `tile` to carry the source's
 // georeferencing when the terrain was loaded on the raster's own grid.
 bool read_georeferencing(const std::string& path, std::array<double, 6>& geotransform, std::string& crs_wkt,
                          int& rows, int& cols);
+
+// The elevation mapping a GIS tool applies to band 1 of a raster (what
+// gdalinfo reports as Offset/Scale and unit): metres = raw * scale + offset.
+// Throws Error(path, ...) when GDAL cannot open it.
+struct BandMapping {
+    double scale = 1.0, offset = 0.0;
+    std::string unit;
+};
+BandMapping read_band_mapping(const std::string& path);
 
 } // namespace overflight

@@ -43,4 +43,17 @@ Containment Frustum::classify(const glm::dvec3& centre, double radius) const {
     return result;
 }
 
+Containment Frustum::classify_box(const glm::dvec3& lo, const glm::dvec3& hi) const {
+    Containment result = Containment::AllInside;
+    for (const Plane& p : planes) {
+        const glm::dvec3 far_corner(p.normal.x >= 0 ? hi.x : lo.x, p.normal.y >= 0 ? hi.y : lo.y,
+                                    p.normal.z >= 0 ? hi.z : lo.z);
+        if (p.distance(far_corner) < 0) return Containment::AllOutside;
+        const glm::dvec3 near_corner(p.normal.x >= 0 ? lo.x : hi.x, p.normal.y >= 0 ? lo.y : hi.y,
+                                     p.normal.z >= 0 ? lo.z : hi.z);
+        if (p.distance(near_corner) < 0) result = Containment::Intersect;
+    }
+    return result;
+}
+
 } // namespace overflight

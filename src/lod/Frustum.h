@@ -54,6 +54,12 @@ struct Frustum {
     // entirely on the inner side of all six, INTERSECT otherwise. Conservative:
     // a sphere reported ALL-OUTSIDE cannot touch the frustum.
     Containment classify(const glm::dvec3& centre, double radius) const;
+
+    // The same three outcomes for an axis-aligned box [lo, hi] (lo <= hi),
+    // tested per plane at its farthest and nearest corners along the normal
+    // (the "p- and n-vertex" test). Tighter than a sphere for the flat boxes
+    // of terrain quadtree nodes; conservative in the same way.
+    Containment classify_box(const glm::dvec3& lo, const glm::dvec3& hi) const;
 };
 
 } // namespace overflight

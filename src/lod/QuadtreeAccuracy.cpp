@@ -6,7 +6,10 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace overflight {
 
@@ -63,9 +66,12 @@ DepthImage rasterize_depth(const MeshArrays& mesh, const Camera& camera) {
         const glm::dvec3 ndc = glm::dvec3(p) / p.w;
         return glm::dvec3((ndc.x + 1) * 0.5 * camera.width, (1 - ndc.y) * 0.5 * camera.height, ndc.z * 0.5 + 0.5);
     };
+    // Each vertex is shared by several triangles: transform it once.
+    std::vector<glm::dvec4> clip_pos(mesh.positions.size());
+    for (std::size_t k = 0; k < clip_pos.size(); ++k) clip_pos[k] = clip * glm::dvec4(glm::dvec3(mesh.positions[k]), 1.0);
     for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         glm::dvec4 v[3];
-        for (int k = 0; k < 3; ++k) v[k] = clip * glm::dvec4(glm::dvec3(mesh.positions[mesh.indices[t + std::size_t(k)]]), 1.0);
+        for (int k = 0; k < 3; ++k) v[k] = clip_pos[mesh.indices[t + std::size_t(k)]];
         // Clip against the near plane z >= -w (Sutherland-Hodgman, one plane).
         glm::dvec4 poly[4];
         int n = 0;
@@ -96,6 +102,70 @@ DepthAgreement compare_depth(const DepthImage& test, const DepthImage& ref, cons
         if (std::abs(dt - dr) <= tolerance * dr) ++a.agreeing;
     }
     return a;
+}
+
+ScreenError screen_space_error(const MeshArrays& mesh, const Terrain& t, const Camera& camera) {
+    ScreenError e;
+    if (mesh.positions.empty()) return e;
+    // Mesh vertices sit on samples, so their grid coordinates are integers
+    // and the point-in-triangle tests below are exact.
+    const double hs = t.h_scale();
+    std::vector<std::array<int, 2>> grid(mesh.positions.size());
+    int r0 = std::numeric_limits<int>::max(), c0 = r0, r1 = std::numeric_limits<int>::min(), c1 = r1;
+    for (std::size_t k = 0; k < grid.size(); ++k) {
+        grid[k] = {int(std::lround(mesh.positions[k].z / hs)), int(std::lround(mesh.positions[k].x / hs))};
+        r0 = std::min(r0, grid[k][0]), r1 = std::max(r1, grid[k][0]);
+        c0 = std::min(c0, grid[k][1]), c1 = std::max(c1, grid[k][1]);
+    }
+    r0 = std::max(r0, 0), c0 = std::max(c0, 0), r1 = std::min(r1, t.rows() - 1), c1 = std::min(c1, t.cols() - 1);
+    if (r0 > r1 || c0 > c1) return e;
+    const int w = c1 - c0 + 1;
+    // Height of the mesh above each sample of its bounding box (NaN: not covered).
+    std::vector<float> mesh_y(std::size_t(r1 - r0 + 1) * std::size_t(w), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t k = 0; k + 2 < mesh.indices.size(); k += 3) {
+        const std::uint32_t ia = mesh.indices[k], ib = mesh.indices[k + 1], ic = mesh.indices[k + 2];
+        const auto a = grid[ia], b = grid[ib], c = grid[ic];
+        const long long area = (long long)(b[1] - a[1]) * (c[0] - a[0]) - (long long)(b[0] - a[0]) * (c[1] - a[1]);
+        if (area == 0) continue;
+        const int i0 = std::max(std::min({a[0], b[0], c[0]}), r0), i1 = std::min(std::max({a[0], b[0], c[0]}), r1);
+        const int j0 = std::max(std::min({a[1], b[1], c[1]}), c0), j1 = std::min(std::max({a[1], b[1], c[1]}), c1);
+        for (int i = i0; i <= i1; ++i)
+            for (int j = j0; j <= j1; ++j) {
+                // Barycentric weights times the doubled area, in integers.
+                const long long wa = (long long)(b[1] - j) * (c[0] - i) - (long long)(b[0] - i) * (c[1] - j);
+                const long long wb = (long long)(c[1] - j) * (a[0] - i) - (long long)(c[0] - i) * (a[1] - j);
+                const long long wc = area - wa - wb;
+                if (area > 0 ? (wa < 0 || wb < 0 || wc < 0) : (wa > 0 || wb > 0 || wc > 0)) continue;
+                const double y = (double(wa) * mesh.positions[ia].y + double(wb) * mesh.positions[ib].y +
+                                  double(wc) * mesh.positions[ic].y) / double(area);
+                mesh_y[std::size_t(i - r0) * std::size_t(w) + std::size_t(j - c0)] = float(y);
+            }
+    }
+    std::vector<double> errors;
+    double sum = 0.0;
+    for (int i = r0; i <= r1; ++i)
+        for (int j = c0; j <= c1; ++j) {
+            const float my = mesh_y[std::size_t(i - r0) * std::size_t(w) + std::size_t(j - c0)];
+            if (std::isnan(my)) continue;
+            const glm::dvec3 p(hs * j, t.sample_height(i, j), hs * i);
+            const Camera::Projected s = camera.project(p);
+            if (!s.in_front || s.depth < 0 || s.depth > 1 || s.col < 0 || s.row < 0 || s.col >= camera.width ||
+                s.row >= camera.height)
+                continue;
+            const Camera::Projected m = camera.project({p.x, double(my), p.z});
+            if (!m.in_front) continue;
+            const double px = std::hypot(m.col - s.col, m.row - s.row);
+            errors.push_back(px);
+            sum += px;
+            e.max_px = std::max(e.max_px, px);
+        }
+    e.samples = (long long)errors.size();
+    if (errors.empty()) return e;
+    e.mean_px = sum / double(errors.size());
+    auto q = errors.begin() + std::ptrdiff_t(0.99 * double(errors.size() - 1));
+    std::nth_element(errors.begin(), q, errors.end());
+    e.p99_px = *q;
+    return e;
 }
 
 } // namespace overflight

@@ -13,6 +13,8 @@
 #include "core/MeshArrays.h"
 #include "core/Terrain.h"
 
+#include <vector>
+
 namespace overflight {
 
 // Every sample and two triangles per grid cell (the reference of the LOD
@@ -35,5 +37,20 @@ struct DepthAgreement {
 // Compares view depths (not window depths, which are compressed near 1).
 DepthAgreement compare_depth(const DepthImage& test, const DepthImage& reference, const Camera& camera,
                              double tolerance = 0.03);
+
+// Screen-space geometric error of a simplified terrain mesh (the quantity the
+// quadtree's --error bounds): for every sample of `terrain` inside the view
+// frustum and covered by `mesh` in XZ, the distance in pixels between the
+// projection of the sample and the projection of the mesh point straight
+// above or below it (same X, Z). Occlusion is ignored: it is the geometric
+// error, not an image difference. `mesh` vertices must lie on samples (X =
+// hs * col, Z = hs * row), as the LOD meshes' do.
+struct ScreenError {
+    long long samples = 0;  // samples inside the frustum and under the mesh
+    double max_px = 0.0;
+    double mean_px = 0.0;
+    double p99_px = 0.0;    // 99th percentile
+};
+ScreenError screen_space_error(const MeshArrays& mesh, const Terrain& terrain, const Camera& camera);
 
 } // namespace overflight

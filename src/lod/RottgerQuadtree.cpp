@@ -27,6 +27,8 @@ RottgerQuadtree::RottgerQuadtree(const Terrain& samples, const std::vector<glm::
     if (!(min_resolution > 1)) throw Error("quadtree", "minimum resolution C must be greater than 1");
     const std::size_t count = std::size_t(n_) * std::size_t(n_);
     d2_.assign(count, 0.0f);
+    lo_.assign(count, 0);
+    hi_.assign(count, 0);
     stamp_.assign(count, 0);
     vertex_id_.assign(count, 0);
     vertex_stamp_.assign(count, 0);
@@ -35,6 +37,7 @@ RottgerQuadtree::RottgerQuadtree(const Terrain& samples, const std::vector<glm::
 
 std::size_t RottgerQuadtree::memory_bytes() const {
     return d2_.size() * sizeof(float) + stamp_.size() * sizeof(std::uint32_t) * 3 +
+           (lo_.size() + hi_.size()) * sizeof(std::uint16_t) +
            (ring_.capacity() + edge_.capacity()) * sizeof(std::array<int, 2>);
 }
 
@@ -59,17 +62,31 @@ void RottgerQuadtree::compute_d2() {
                 dh = std::max(dh, std::abs(c - 0.5 * (nw + se)));
                 dh = std::max(dh, std::abs(c - 0.5 * (ne + sw)));
                 double v = dh / d;
+                std::uint16_t lo = terrain_->raw(ci, cj), hi = lo;
                 if (h > 1) {
                     const int q = h / 2;
                     v = std::max({v, K * d2_[idx(ci - q, cj - q)], K * d2_[idx(ci - q, cj + q)],
                                   K * d2_[idx(ci + q, cj - q)], K * d2_[idx(ci + q, cj + q)]});
+                    for (const std::size_t k : {idx(ci - q, cj - q), idx(ci - q, cj + q), idx(ci + q, cj - q),
+                                                idx(ci + q, cj + q)}) {
+                        lo = std::min(lo, lo_[k]);
+                        hi = std::max(hi, hi_[k]);
+                    }
+                } else {
+                    for (int i = ci - 1; i <= ci + 1; ++i)
+                        for (int j = cj - 1; j <= cj + 1; ++j) {
+                            lo = std::min(lo, terrain_->raw(i, j));
+                            hi = std::max(hi, terrain_->raw(i, j));
+                        }
                 }
                 d2_[idx(ci, cj)] = float(v);
+                lo_[idx(ci, cj)] = lo;
+                hi_[idx(ci, cj)] = hi;
             }
     }
 }
 
-void RottgerQuadtree::refine(const glm::dvec3& eye, double c) {
+void RottgerQuadtree::refine(const glm::dvec3& eye, double c, const Frustum* frustum) {
     ++frame_;
     if (frame_ == 0) { // wrapped: stale stamps could alias the new frame
         std::fill(stamp_.begin(), stamp_.end(), 0u);
@@ -77,11 +94,12 @@ void RottgerQuadtree::refine(const glm::dvec3& eye, double c) {
     }
     eye_ = eye;
     c_ = c;
+    frustum_ = frustum;
     const int root = (n_ - 1) / 2;
-    refine_node(root, root, root);
+    refine_node(root, root, root, frustum == nullptr);
 }
 
-void RottgerQuadtree::refine_node(int ci, int cj, int h) {
+void RottgerQuadtree::refine_node(int ci, int cj, int h, bool inside) {
     if (h < 2) return; // 3x3 nodes are the finest: always leaves
     const double hs = terrain_->h_scale();
     const glm::dvec3 centre(hs * double(origin_col_ + cj), double(world_y(ci, cj)), hs * double(origin_row_ + ci));
@@ -89,12 +107,22 @@ void RottgerQuadtree::refine_node(int ci, int cj, int h) {
     const double d = 2.0 * h * hs;
     const double f = l / (d * C_ * std::max(c_ * double(d2_[idx(ci, cj)]), 1.0));
     if (f >= 1.0) return;
+    if (!inside) {
+        // Only after f < 1: the frustum test costs more than f.
+        const double y0 = terrain_->v_scale() * double(lo_[idx(ci, cj)]) + terrain_->y_offset();
+        const double y1 = terrain_->v_scale() * double(hi_[idx(ci, cj)]) + terrain_->y_offset();
+        const glm::dvec3 lo(hs * double(origin_col_ + cj - h), std::min(y0, y1), hs * double(origin_row_ + ci - h));
+        const glm::dvec3 hi(hs * double(origin_col_ + cj + h), std::max(y0, y1), hs * double(origin_row_ + ci + h));
+        const Containment k = frustum_->classify_box(lo, hi);
+        if (k == Containment::AllOutside) return;
+        inside = k == Containment::AllInside;
+    }
     stamp_[idx(ci, cj)] = frame_;
     const int q = h / 2;
-    refine_node(ci - q, cj - q, q);
-    refine_node(ci - q, cj + q, q);
-    refine_node(ci + q, cj - q, q);
-    refine_node(ci + q, cj + q, q);
+    refine_node(ci - q, cj - q, q, inside);
+    refine_node(ci - q, cj + q, q, inside);
+    refine_node(ci + q, cj - q, q, inside);
+    refine_node(ci + q, cj + q, q, inside);
 }
 
 // node_subdivided / node_reached take a node centre in this patch's local

@@ -57,6 +57,7 @@
 // samples (overlapping 2^k+1 tiles), so both sides use identical positions.
 #include "core/MeshArrays.h"
 #include "core/Terrain.h"
+#include "lod/Frustum.h"
 
 #include <glm/vec3.hpp>
 
@@ -91,6 +92,9 @@ public:
     double min_resolution() const { return C_; }
     // Propagated d2 of the node centred at (row, col) (0 where no node is centred).
     float d2(int row, int col) const { return d2_[idx(row, col)]; }
+    // Raw height range of the samples of the node centred at (row, col).
+    std::uint16_t raw_min(int row, int col) const { return lo_[idx(row, col)]; }
+    std::uint16_t raw_max(int row, int col) const { return hi_[idx(row, col)]; }
 
     // Neighbouring patches, or nullptr where there is none or it is not drawn
     // this frame (the patch then keeps its own edge midpoints there, as at
@@ -99,8 +103,13 @@ public:
     void set_neighbour(Side side, const RottgerQuadtree* q) { neighbours_[side] = q; }
 
     // Top-down evaluation of f from the root (Röttger sec. 3.2) for an eye
-    // in world coordinates; starts a new frame.
-    void refine(const glm::dvec3& eye, double c);
+    // in world coordinates; starts a new frame. With a frustum, a node whose
+    // bounding box (its XZ square, its samples' Y range) lies wholly outside
+    // it is not subdivided: Zamri's culling carried from tiles down to
+    // nodes, so the minimum-resolution term does not refine the ground
+    // beside and behind the viewer. Such a node is still drawn, coarsely, so
+    // its visible neighbours keep a conforming mesh.
+    void refine(const glm::dvec3& eye, double c, const Frustum* frustum = nullptr);
     // Whether the node centred at (row, col) was subdivided by the last refine().
     bool subdivided(int row, int col) const { return stamp_[idx(row, col)] == frame_; }
 
@@ -117,7 +126,7 @@ private:
     std::size_t idx(int row, int col) const { return std::size_t(row) * std::size_t(n_) + std::size_t(col); }
     float world_y(int row, int col) const { return terrain_->sample_height(row, col); }
     void compute_d2();
-    void refine_node(int ci, int cj, int h);
+    void refine_node(int ci, int cj, int h, bool inside);
     void emit_leaves(int ci, int cj, int h);
     bool has_patch(int ci, int cj) const;
     bool node_reached(int ci, int cj, int h) const;
@@ -131,6 +140,7 @@ private:
     int origin_row_ = 0, origin_col_ = 0;
     double C_ = 4.0;
     std::vector<float> d2_;
+    std::vector<std::uint16_t> lo_, hi_; // per node: raw height range of its samples
     std::vector<std::uint32_t> stamp_;     // == frame_: subdivided this frame
     std::vector<std::uint32_t> vertex_id_; // valid where vertex_stamp_ == emit_frame_
     std::vector<std::uint32_t> vertex_stamp_;
@@ -140,6 +150,7 @@ private:
     // Per-frame state of refine()/append_fans(), kept to avoid allocating per frame.
     glm::dvec3 eye_{0.0};
     double c_ = 1.0;
+    const Frustum* frustum_ = nullptr;
     MeshArrays* out_ = nullptr;
     std::vector<std::array<int, 2>> ring_; // fan boundary of one leaf
     std::vector<std::array<int, 2>> edge_;

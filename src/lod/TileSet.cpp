@@ -25,6 +25,9 @@ void TileGrid::validate(const std::string& subject) const {
         throw Error(subject, "tile size " + std::to_string(tile_size) + " is not 2^k+1 with k >= 1");
     if (tile_rows < 1 || tile_cols < 1 || tile_rows > 65536 || tile_cols > 65536)
         throw Error(subject, "tile grid " + std::to_string(tile_rows) + "x" + std::to_string(tile_cols) + " is empty or too large");
+    if (source_rows < 2 || source_cols < 2 || source_rows > padded_rows() || source_cols > padded_cols())
+        throw Error(subject, "source of " + std::to_string(source_rows) + "x" + std::to_string(source_cols) +
+                                 " samples does not fit the tile grid");
     const std::size_t n = std::size_t(tile_rows) * std::size_t(tile_cols);
     if (exists.size() != n || min_height.size() != n || max_height.size() != n)
         throw Error(subject, "tile grid needs one existence flag and one height range per tile");
@@ -39,6 +42,8 @@ TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
     TileGrid g;
     g.tile_size = std::min(tile_size, padded);
     g.tile_rows = g.tile_cols = (padded - 1) / g.stride();
+    g.source_rows = terrain.rows();
+    g.source_cols = terrain.cols();
     g.h_scale = terrain.h_scale();
     g.v_scale = terrain.v_scale();
     g.y_offset = terrain.y_offset();
@@ -86,6 +91,56 @@ TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row,
         }
     }
     return t;
+}
+
+TileApron cut_apron(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col) {
+    const int n = grid.tile_size, S = grid.stride();
+    const int r0 = tile_row * S, c0 = tile_col * S;
+    auto raw = [&](int gi, int gj) {
+        return terrain.raw(std::clamp(gi, 0, terrain.rows() - 1), std::clamp(gj, 0, terrain.cols() - 1));
+    };
+    TileApron a;
+    for (int k = 0; k < n; ++k) {
+        a.north.push_back(raw(r0 - 1, c0 + k));
+        a.south.push_back(raw(r0 + n, c0 + k));
+        a.west.push_back(raw(r0 + k, c0 - 1));
+        a.east.push_back(raw(r0 + k, c0 + n));
+    }
+    return a;
+}
+
+std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron, const TileGrid& grid, int tile_row,
+                                    int tile_col) {
+    const int n = grid.tile_size, S = grid.stride();
+    const auto un = std::size_t(n);
+    if (tile.rows() != n || tile.cols() != n || apron.north.size() != un || apron.south.size() != un ||
+        apron.west.size() != un || apron.east.size() != un)
+        throw Error("tile", "samples or apron do not match the tile size " + std::to_string(n));
+    const int r0 = tile_row * S, c0 = tile_col * S;
+    // Height at local (i, j) in -1..n, at most one of them outside the tile.
+    auto height = [&](int i, int j) {
+        std::uint16_t raw;
+        if (i < 0) raw = apron.north[std::size_t(j)];
+        else if (i >= n) raw = apron.south[std::size_t(j)];
+        else if (j < 0) raw = apron.west[std::size_t(i)];
+        else if (j >= n) raw = apron.east[std::size_t(i)];
+        else raw = tile.raw(i, j);
+        return tile.v_scale() * float(raw) + tile.y_offset(); // as Terrain::sample_height
+    };
+    std::vector<glm::vec3> normals(un * un);
+    const float hs = tile.h_scale();
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            // The same clamping and float arithmetic as Terrain::sample_normal
+            // on the source, in global sample indices.
+            const int row = std::min(r0 + i, grid.source_rows - 1), col = std::min(c0 + j, grid.source_cols - 1);
+            const int cl = std::max(col - 1, 0), cr = std::min(col + 1, grid.source_cols - 1);
+            const int rt = std::max(row - 1, 0), rb = std::min(row + 1, grid.source_rows - 1);
+            const float dhdx = (height(row - r0, cr - c0) - height(row - r0, cl - c0)) / (hs * float(cr - cl));
+            const float dhdz = (height(rb - r0, col - c0) - height(rt - r0, col - c0)) / (hs * float(rb - rt));
+            normals[std::size_t(i) * un + std::size_t(j)] = glm::normalize(glm::vec3(-dhdx, 1.0f, -dhdz));
+        }
+    return normals;
 }
 
 TileLoader terrain_tile_loader(const Terrain& terrain, const TileGrid& grid) {
@@ -178,6 +233,7 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
     window_.assign(std::size_t(W) * std::size_t(W), nullptr);
     const Frustum frustum = Frustum::from_camera(camera);
     visible_keys_.clear();
+    inside_.clear();
     for (int r = std::max(tr0 - R, 0); r <= std::min(tr0 + R, grid_.tile_rows - 1); ++r)
         for (int c = std::max(tc0 - R, 0); c <= std::min(tc0 + R, grid_.tile_cols - 1); ++c) {
             if (!grid_.present(r, c)) continue;
@@ -187,11 +243,13 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
             const double y0 = grid_.min_height[gi], y1 = grid_.max_height[gi];
             const glm::dvec3 centre((c + 0.5) * tw, 0.5 * (y0 + y1), (r + 0.5) * tw);
             const double radius = std::sqrt(0.5 * tw * tw + 0.25 * (y1 - y0) * (y1 - y0));
-            if (frustum.classify(centre, radius) == Containment::AllOutside) {
+            const Containment k = frustum.classify(centre, radius);
+            if (k == Containment::AllOutside) {
                 ++stats.culled;
                 continue;
             }
             visible_keys_.emplace_back(r, c);
+            inside_.push_back(k == Containment::AllInside);
         }
     stats.visible = int(visible_keys_.size());
     stats.ms_select = ms_since(t0);
@@ -215,12 +273,14 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
     };
     t0 = Clock::now();
     const double c = rottger_c(error_px, camera.focal_px(), C_);
-    for (Tile* t : visible_) {
+    for (std::size_t k = 0; k < visible_.size(); ++k) {
+        Tile* t = visible_[k];
         t->quadtree->set_neighbour(RottgerQuadtree::North, at(t->row - 1, t->col));
         t->quadtree->set_neighbour(RottgerQuadtree::South, at(t->row + 1, t->col));
         t->quadtree->set_neighbour(RottgerQuadtree::West, at(t->row, t->col - 1));
         t->quadtree->set_neighbour(RottgerQuadtree::East, at(t->row, t->col + 1));
-        t->quadtree->refine(camera.eye, c);
+        // A tile wholly inside needs no per-node frustum tests.
+        t->quadtree->refine(camera.eye, c, inside_[k] ? nullptr : &frustum);
     }
     stats.ms_refine = ms_since(t0);
 

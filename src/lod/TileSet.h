@@ -36,6 +36,7 @@ namespace overflight {
 struct TileGrid {
     int tile_size = 257;            // samples per side, 2^k+1
     int tile_rows = 0, tile_cols = 0;
+    int source_rows = 0, source_cols = 0; // the terrain before padding
     float h_scale = 1.0f, v_scale = 1.0f, y_offset = 0.0f;
     std::vector<std::uint8_t> exists; // Zamri's flags, row-major tile_rows x tile_cols
     std::vector<float> min_height;    // world Y range per tile, for the bounding
@@ -47,18 +48,42 @@ struct TileGrid {
         return r >= 0 && c >= 0 && r < tile_rows && c < tile_cols && exists[index(r, c)] != 0;
     }
     double tile_world_size() const { return double(h_scale) * stride(); }
+    int padded_rows() const { return tile_rows * stride() + 1; }
+    int padded_cols() const { return tile_cols * stride() + 1; }
     // Throws Error(subject, ...) when sizes or vectors are inconsistent.
     void validate(const std::string& subject) const;
 };
 
 // What a loader returns for one tile: tile_size^2 samples (heights, colors,
 // the grid's scales) and optionally one normal per sample (empty: computed
-// from the tile's own samples, one-sided on its border).
+// from the tile's own samples, one-sided on its border, which shows a
+// lighting seam where tiles meet).
 struct TileSamples {
     Terrain samples;
     std::vector<glm::vec3> normals;
 };
 using TileLoader = std::function<TileSamples(int tile_row, int tile_col)>;
+
+// The raw samples just outside tile (r, c), s = tile_size, S = s - 1:
+// `north` is global row r*S - 1 and `south` row r*S + s, both over the
+// tile's columns c*S .. c*S + S; `west` and `east` are columns c*S - 1 and
+// c*S + s over the tile's rows. A central difference at a tile edge needs
+// them because overlapping tiles share their edge samples, so the sample
+// beyond an edge lives only in the neighbour. Positions outside the source
+// hold the clamped source sample (they are never used for normals).
+struct TileApron {
+    std::vector<std::uint16_t> north, south, west, east; // tile_size values each
+};
+TileApron cut_apron(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col);
+
+// One unit normal per sample of tile (r, c), equal to Terrain::sample_normal
+// of the whole source terrain at that sample (at the clamped source sample in
+// the padding): central differences, one-sided only at the source's own
+// border, using `apron` across the tile's edges, so both tiles of a seam
+// compute identical normals there. Throws Error("tile", ...) when the tile or
+// apron sizes do not match the grid.
+std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron, const TileGrid& grid, int tile_row,
+                                    int tile_col);
 
 // Tiling of a terrain held in memory, following Zamri's rule: the terrain is
 // (virtually) padded to a (2^n+1)^2 square, n from its larger side, and cut
@@ -100,8 +125,9 @@ public:
 
     // One frame: select the tiles around the camera, cull them against its
     // frustum, load the missing ones, refine each visible tile's quadtree
-    // for a screen-space error of error_px pixels and append the stitched
-    // fans to `out` (cleared first). Throws what the loader throws.
+    // for a screen-space error of error_px pixels (nodes outside the frustum
+    // stay coarse) and append the stitched fans to `out` (cleared first).
+    // Throws what the loader throws.
     TileFrameStats build_mesh(const Camera& camera, double error_px, MeshArrays& out);
 
     // The visible tiles of the last frame, as (row, col).
@@ -124,6 +150,7 @@ private:
     std::unordered_map<std::uint64_t, std::unique_ptr<Tile>> cache_;
     // Per-frame scratch, reused.
     std::vector<std::pair<int, int>> visible_keys_;
+    std::vector<bool> inside_; // per visible tile: ALL-INSIDE the frustum
     std::vector<Tile*> visible_;
     std::vector<Tile*> window_; // (2R+1)^2 window around the viewer's tile
 };

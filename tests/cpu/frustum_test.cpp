@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
@@ -62,6 +63,26 @@ TEST(Frustum, SphereClassificationThreeOutcomes) {
     EXPECT_EQ(f.classify({5, 0, -5}, 1.0), Containment::AllOutside);
     // Touching from outside: distance exactly -r is not outside (conservative).
     EXPECT_EQ(f.classify({2, 0, -5}, 1.0), Containment::Intersect);
+}
+
+// The box test on the same box frustum -1 <= x, y <= 1, -10 <= z <= -1:
+// each outcome, and a thin box beside a corner that its bounding sphere would
+// touch (sphere: INTERSECT) but that lies wholly outside the right plane.
+TEST(Frustum, BoxClassificationThreeOutcomes) {
+    const Frustum f = Frustum::from_matrix(glm::ortho(-1.0, 1.0, -1.0, 1.0, 1.0, 10.0));
+    EXPECT_EQ(f.classify_box({-0.5, -0.5, -6}, {0.5, 0.5, -4}), Containment::AllInside);
+    EXPECT_EQ(f.classify_box({0.5, -0.5, -6}, {1.5, 0.5, -4}), Containment::Intersect);
+    EXPECT_EQ(f.classify_box({2, -0.5, -6}, {3, 0.5, -4}), Containment::AllOutside);
+    EXPECT_EQ(f.classify_box({-0.5, -0.5, -12}, {0.5, 0.5, -11}), Containment::AllOutside); // beyond far
+    // A box spanning the whole frustum intersects every plane, but is not outside.
+    EXPECT_EQ(f.classify_box({-5, -5, -20}, {5, 5, 5}), Containment::Intersect);
+    // Touching from outside (x = 1 exactly) is not outside: conservative.
+    EXPECT_EQ(f.classify_box({1, -0.5, -6}, {2, 0.5, -4}), Containment::Intersect);
+    // A box 0.1 thick along x at x in [1.05, 1.15], z spanning [-9, -2]: its
+    // bounding sphere (radius ~3.5) reaches inside, the box does not.
+    const glm::dvec3 lo(1.05, -0.5, -9), hi(1.15, 0.5, -2);
+    EXPECT_EQ(f.classify(0.5 * (lo + hi), 0.5 * glm::length(hi - lo)), Containment::Intersect);
+    EXPECT_EQ(f.classify_box(lo, hi), Containment::AllOutside);
 }
 
 // Zamri's Fig. 4.1 returns INTERSECT at the first straddled plane. This

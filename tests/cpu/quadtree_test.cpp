@@ -12,6 +12,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <set>
 #include <tuple>
 #include <vector>
 
@@ -260,6 +261,39 @@ TEST(RottgerQuadtree, NoCrackAcrossPatchSeams) {
         }
         EXPECT_GT(unmatched_inner, 0);
     }
+}
+
+// With a frustum, nodes whose box lies wholly outside it stay whole (Zamri's
+// culling carried down to nodes): here the frustum is the slab 0 <= X <= 16
+// of a 65x65 patch and the error target asks for everything, so the slab is
+// at full resolution, nothing east of it is subdivided, and the mesh is
+// still conforming.
+TEST(RottgerQuadtree, NodesOutsideTheFrustumStayCoarse) {
+    const Terrain t = field(65, random_field(65, 13, 500));
+    const auto n = normals_of(t);
+    RottgerQuadtree q(t, n, 0, 0, 2.0);
+    Frustum slab;
+    slab.planes = {Plane{{1, 0, 0}, 0.0},     Plane{{-1, 0, 0}, 16.0}, Plane{{0, 1, 0}, 1e6},
+                   Plane{{0, -1, 0}, 1e6},    Plane{{0, 0, 1}, 1e6},   Plane{{0, 0, -1}, 1e6}};
+    q.refine({8, 3000, 32}, 1e9, &slab);
+    MeshArrays m;
+    q.append_fans(m);
+    expect_conforming(m, 64, 64);
+    std::set<std::pair<float, float>> vertices;
+    for (const glm::vec3& p : m.positions) vertices.insert({p.x, p.z});
+    for (int i = 0; i <= 64; ++i)
+        for (int j = 0; j <= 16; ++j) EXPECT_TRUE(vertices.count({float(j), float(i)})) << i << "," << j;
+    for (int h = 2; h <= 32; h *= 2)
+        for (int ci = h; ci < 65; ci += 2 * h)
+            for (int cj = h; cj < 65; cj += 2 * h)
+                if (cj - h > 16) {
+                    EXPECT_FALSE(q.subdivided(ci, cj)) << "node " << ci << "," << cj << " h " << h;
+                }
+    EXPECT_LT(m.triangle_count(), 2u * 64 * 64 / 3);
+    // Without the frustum the same target refines everything.
+    MeshArrays all;
+    q.refine({8, 3000, 32}, 1e9);
+    EXPECT_EQ(q.append_fans(all), 2u * 64 * 64);
 }
 
 TEST(RottgerQuadtree, RejectsBadPatch) {

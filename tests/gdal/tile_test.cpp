@@ -1,18 +1,30 @@
 // `overflight tile`: overlapping tiles reassemble exactly to the padded
-// source, existence flags, georeferencing, and an interrupted tiling that
-// re-runs to the same result.
+// source, existence flags, georeferencing on real DEMs, an interrupted
+// tiling (and a killed tiler) that re-runs to the same result, tile-edge
+// normals equal to the whole terrain's, and the overview that stands in for
+// a terrain larger than memory.
 #include "TestSupport.h"
 
 #include "core/DemoIsland.h"
 #include "core/Error.h"
+#include "io/LoadTerrain.h"
+#include "io/RasterFile.h"
 #include "io/TileDirectory.h"
 #include "lod/TileSet.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <spawn.h>
+#include <thread>
+
+extern char** environ;
 
 using namespace overflight;
 namespace fs = std::filesystem;
@@ -131,7 +143,7 @@ TEST(Tile, InterruptedRunResumesToTheSameResult) {
     int files2 = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path)) ++files2;
     EXPECT_EQ(files, files2);
-    EXPECT_EQ(files, 33); // 16 heights + 16 colors + index.json
+    EXPECT_EQ(files, 49); // 16 heights + 16 colors + 16 aprons + index.json
 
     // A different source does not resume: everything is rewritten.
     DataSet other = d;
@@ -182,4 +194,261 @@ TEST(Tile, RealDemKeepsGeoreferencing) {
     ASSERT_TRUE(read_georeferencing(dir / "t/r1_c1.tif", tgt, twkt, rows, cols));
     EXPECT_NEAR(tgt[0], gt[0] + 128 * gt[1], 1e-6);
     EXPECT_NEAR(tgt[3], gt[3] + 128 * gt[5], 1e-6);
+}
+
+// The tiler killed with SIGKILL in mid-run (not the cooperative stop above):
+// no file under a final name is partial (each is byte-identical to the same
+// file of an uninterrupted run), the directory is refused until finished, and
+// a re-run skips the finished tiles and ends identical to the uninterrupted run.
+TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
+    test::ScratchDir scratch;
+    const std::string ref = scratch / "ref", dir = scratch / "killed";
+    const std::string args = "tile demo --demo-size 257 --tile-size 9 -o "; // 32x32 tiles
+    const auto done = test::run_overflight(args + "'" + ref + "'");
+    ASSERT_EQ(done.exit_code, 0) << done.err;
+
+    // Heights files (r{R}_c{C}.tif) under their final names: finished tiles.
+    auto finished_tiles = [&] {
+        int n = 0;
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator(dir, ec)) {
+            const std::string name = e.path().filename().string();
+            n += name[0] == 'r' && name.size() > 4 && name.compare(name.size() - 4, 4, ".tif") == 0 &&
+                 name.find("_rgb") == std::string::npos && name.find("_apron") == std::string::npos;
+        }
+        return n;
+    };
+    std::vector<std::string> argv_s = {OVERFLIGHT_EXE, "tile", "demo", "--demo-size", "257", "--tile-size", "9", "-o", dir};
+    std::vector<char*> argv;
+    for (auto& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t quiet;
+    posix_spawn_file_actions_init(&quiet);
+    posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    ASSERT_EQ(posix_spawn(&pid, OVERFLIGHT_EXE, &quiet, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&quiet);
+    // Kill it once a few dozen of the 1024 tiles are finished.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    int status = 0;
+    bool exited = false;
+    while (finished_tiles() < 40 && std::chrono::steady_clock::now() < deadline) {
+        if (waitpid(pid, &status, WNOHANG) == pid) {
+            exited = true;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+    if (!exited) {
+        kill(pid, SIGKILL);
+        waitpid(pid, &status, 0);
+    }
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the tiler ended before it could be killed";
+
+    const int finished = finished_tiles();
+    EXPECT_GE(finished, 40);
+    EXPECT_LT(finished, 1024);
+    EXPECT_THROW(read_tile_index(dir), Error); // incomplete: refused
+    for (const auto& e : fs::directory_iterator(dir)) {
+        const std::string name = e.path().filename().string();
+        if (name[0] == '.' || name == "index.json") continue; // temporaries and the incomplete index
+        EXPECT_EQ(bytes_of(e.path()), bytes_of(fs::path(ref) / name)) << name << " is partial";
+    }
+
+    const auto again = test::run_overflight(args + "'" + dir + "'");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_NE(again.out.find(std::to_string(finished) + " already done"), std::string::npos) << again.out;
+    int files = 0;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        ++files;
+        EXPECT_EQ(bytes_of(e.path()), bytes_of(fs::path(ref) / e.path().filename())) << e.path().filename();
+    }
+    EXPECT_EQ(files, 3 * 1024 + 1);
+    EXPECT_EQ(read_tile_index(dir).checksum, read_tile_index(ref).checksum);
+}
+
+// Normals read from a tile directory equal the whole terrain's at every
+// sample, so the two tiles of a seam light it identically (the apron files).
+TEST(Tile, TileEdgeNormalsMatchTheWholeTerrain) {
+    test::ScratchDir dir;
+    const DataSet d = small_island();
+    TileWriteOptions o;
+    o.tile_size = 33;
+    write_tile_directory(d, dir.path.string(), o);
+    const TileIndex ix = read_tile_index(dir.path.string());
+    EXPECT_TRUE(ix.apron);
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) {
+            const TileSamples t = read_tile(dir.path.string(), ix, r, c);
+            ASSERT_EQ(t.normals.size(), 33u * 33u);
+            for (int i = 0; i < 33; ++i)
+                for (int j = 0; j < 33; ++j)
+                    ASSERT_EQ(t.normals[t.samples.index(i, j)], d.terrain.sample_normal(r * 32 + i, c * 32 + j))
+                        << "tile " << r << "," << c << " sample " << i << "," << j;
+        }
+    // The shared column of tiles (1,1) and (1,2): the same normals from both.
+    const TileSamples a = read_tile(dir.path.string(), ix, 1, 1), b = read_tile(dir.path.string(), ix, 1, 2);
+    for (int i = 0; i < 33; ++i) EXPECT_EQ(a.normals[a.samples.index(i, 32)], b.normals[b.samples.index(i, 0)]);
+    // A directory of an older tiler (no aprons) still loads; normals are then left to TileSet.
+    TileIndex old = ix;
+    old.apron = false;
+    EXPECT_TRUE(read_tile(dir.path.string(), old, 1, 1).normals.empty());
+}
+
+// A 70 x 100 terrain (h_scale 5) standing in for a large one: every f-th
+// sample, f the power of two that fits max_side, over the same extent (the
+// last row/column clamped to the source's, darkened as padding), from the
+// stored overview.tif, from it decimated further, or from the tiles.
+TEST(Tile, OverviewStandsInForTheTerrain) {
+    test::ScratchDir dir;
+    DataSet d;
+    d.terrain = Terrain(70, 100, 5.0f, 0.5f, -10.0f);
+    for (int i = 0; i < 70; ++i)
+        for (int j = 0; j < 100; ++j) {
+            d.terrain.raw(i, j) = std::uint16_t(i * 100 + j);
+            d.terrain.color(i, j) = Rgb8{std::uint8_t(2 * i), std::uint8_t(2 * j), 200};
+        }
+    EXPECT_EQ(overview_stride(70, 100, 30), 4);  // (100 - 2) / 4 + 2 = 26 <= 30 < (100 - 2) / 2 + 2
+    EXPECT_EQ(overview_stride(70, 100, 100), 1);
+    EXPECT_EQ(overview_stride(16385, 16385, 2049), 8);
+    EXPECT_THROW(overview_stride(70, 100, 1), Error);
+    TileWriteOptions o;
+    o.tile_size = 33;
+    o.overview_max_side = 30;
+    write_tile_directory(d, dir.path.string(), o);
+    const TileIndex ix = read_tile_index(dir.path.string());
+    EXPECT_EQ(ix.overview_stride, 4);
+    EXPECT_EQ(ix.overview_rows, 19); // (70 - 2) / 4 + 2
+    EXPECT_EQ(ix.overview_cols, 26);
+    ASSERT_TRUE(fs::exists(dir.path / "overview.tif"));
+    std::array<double, 6> gt{};
+    std::string wkt;
+    int rows = 0, cols = 0;
+    ASSERT_TRUE(read_georeferencing(dir / "overview.tif", gt, wkt, rows, cols));
+    EXPECT_EQ(rows, 19);
+    EXPECT_DOUBLE_EQ(gt[1], 4 * ix.geotransform[1]);
+    EXPECT_DOUBLE_EQ(gt[0], ix.geotransform[0]);
+
+    auto check = [&](const DataSet& ov, int f) {
+        SCOPED_TRACE("stride " + std::to_string(f));
+        ASSERT_EQ(ov.terrain.rows(), (70 - 2) / f + 2);
+        ASSERT_EQ(ov.terrain.cols(), (100 - 2) / f + 2);
+        EXPECT_FLOAT_EQ(ov.terrain.h_scale(), 5.0f * float(f));
+        EXPECT_GE(ov.terrain.width(), d.terrain.width());
+        EXPECT_LT(ov.terrain.width(), d.terrain.width() + 5.0f * float(f));
+        EXPECT_EQ(ov.terrain.v_scale(), 0.5f);
+        EXPECT_EQ(ov.info.source_rows, 70);
+        EXPECT_EQ(ov.info.source_cols, 100);
+        for (int i = 0; i < ov.terrain.rows(); ++i)
+            for (int j = 0; j < ov.terrain.cols(); ++j) {
+                const int si = std::min(i * f, 69), sj = std::min(j * f, 99);
+                ASSERT_EQ(ov.terrain.raw(i, j), d.terrain.raw(si, sj)) << i << "," << j;
+                Rgb8 want = d.terrain.color(si, sj);
+                if (si != i * f || sj != j * f) want = Rgb8{std::uint8_t(want.r / 2), std::uint8_t(want.g / 2), 100};
+                ASSERT_EQ(ov.terrain.color(i, j), want) << i << "," << j;
+            }
+    };
+    check(load_tile_directory_overview(dir.path.string(), 30), 4); // overview.tif as stored
+    check(load_tile_directory_overview(dir.path.string(), 15), 8); // stored, decimated by 2
+    check(load_tile_directory_overview(dir.path.string(), 60), 2); // finer than stored: from the tiles
+    const DataSet full = load_tile_directory_overview(dir.path.string(), 100);
+    EXPECT_EQ(full.terrain.heights(), d.terrain.heights());
+    // A terrain that fits needs no overview files.
+    test::ScratchDir small;
+    write_tile_directory(d, small.path.string(), TileWriteOptions{33});
+    EXPECT_FALSE(fs::exists(small.path / "overview.tif"));
+    EXPECT_EQ(read_tile_index(small.path.string()).overview_stride, 0);
+}
+
+// A float DEM on its own square UTM grid (Olinda, 111 x 111 Float32, 90 m):
+// each tile carries the source CRS, a geotransform on the source grid (tile
+// (r, c) origin = source origin + (c (s-1) dx, r (s-1) dy)), and GDAL
+// scale/offset so that a tile's scaled value is the source's elevation
+// within half a v_scale step (its elevations are whole metres from -1 m: the
+// mapping is raw * 1 - 1).
+TEST(Tile, FloatDemTilesReadAsMetresOnTheSourceGrid) {
+    OVERFLIGHT_SHARED_FILE(path, "paired/olinda/olinda_dem_utm25s.tif");
+    std::array<double, 6> src_gt{};
+    std::string src_wkt;
+    int rows = 0, cols = 0;
+    ASSERT_TRUE(read_georeferencing(path, src_gt, src_wkt, rows, cols));
+    const Image2D<float> src = read_raster_band(path);
+    const DataSet d = load_terrain(path);
+    ASSERT_FALSE(d.info.reprojected);
+    ASSERT_EQ(d.terrain.rows(), 111);
+    test::ScratchDir dir;
+    TileWriteOptions o;
+    o.tile_size = 33;
+    write_tile_directory(d, dir.path.string(), o);
+    const TileIndex ix = read_tile_index(dir.path.string());
+    EXPECT_TRUE(ix.georeferenced);
+    EXPECT_EQ(ix.geotransform, src_gt);
+    const float step = ix.grid.v_scale;
+    int checked = 0;
+    for (const auto& [r, c] : {std::pair{0, 0}, std::pair{1, 2}, std::pair{3, 3}}) {
+        const std::string tile = dir / ("r" + std::to_string(r) + "_c" + std::to_string(c) + ".tif");
+        std::array<double, 6> gt{};
+        std::string wkt;
+        ASSERT_TRUE(read_georeferencing(tile, gt, wkt, rows, cols));
+        EXPECT_EQ(wkt, src_wkt);
+        EXPECT_NEAR(gt[0], src_gt[0] + c * 32 * src_gt[1], 1e-6);
+        EXPECT_NEAR(gt[3], src_gt[3] + r * 32 * src_gt[5], 1e-6);
+        EXPECT_EQ(gt[1], src_gt[1]);
+        EXPECT_EQ(gt[5], src_gt[5]);
+        const BandMapping m = read_band_mapping(tile);
+        EXPECT_EQ(m.unit, "metre");
+        EXPECT_EQ(m.scale, step);
+        EXPECT_EQ(m.offset, ix.grid.y_offset);
+        const Image2D<float> raw = read_raster_band(tile);
+        for (int i = 0; i < 33 && r * 32 + i < 111; i += 4)
+            for (int j = 0; j < 33 && c * 32 + j < 111; j += 4) {
+                const double metres = raw.at(j, i) * m.scale + m.offset;
+                EXPECT_NEAR(metres, src.at(c * 32 + j, r * 32 + i), 0.5 * step + 1e-6)
+                    << "tile " << r << "," << c << " sample " << i << "," << j;
+                ++checked;
+            }
+    }
+    EXPECT_EQ(checked, 81 + 81 + 16);
+}
+
+// SRTM .hgt (WGS84 degrees) is reprojected to square UTM cells when loaded;
+// its tiles carry that UTM grid and CRS, and read back as the loaded metres.
+TEST(Tile, SrtmTilesCarryTheReprojectedGrid) {
+    OVERFLIGHT_SHARED_FILE(path, "srtm/N57E011.hgt");
+    const DataSet d = load_terrain(path);
+    ASSERT_TRUE(d.info.reprojected);
+    ASSERT_TRUE(d.info.georeferenced);
+    test::ScratchDir dir;
+    TileWriteOptions o;
+    o.tile_size = 513;
+    write_tile_directory(d, dir.path.string(), o);
+    const TileIndex ix = read_tile_index(dir.path.string());
+    EXPECT_EQ(ix.geotransform, d.info.geotransform);
+    EXPECT_NE(ix.crs_wkt.find("UTM zone 32N"), std::string::npos) << ix.crs_wkt.substr(0, 80);
+    const double dx = d.info.geotransform[1], dy = d.info.geotransform[5];
+    EXPECT_NEAR(dx, d.terrain.h_scale(), 1e-3);
+    EXPECT_NEAR(dy, -dx, 1e-9); // square cells, north up
+    int checked = 0;
+    for (int r = 0; r < ix.grid.tile_rows; ++r)
+        for (int c = 0; c < ix.grid.tile_cols; ++c) {
+            if (!ix.grid.present(r, c)) continue;
+            const std::string tile = dir / ("r" + std::to_string(r) + "_c" + std::to_string(c) + ".tif");
+            std::array<double, 6> gt{};
+            std::string wkt;
+            int rows = 0, cols = 0;
+            ASSERT_TRUE(read_georeferencing(tile, gt, wkt, rows, cols));
+            EXPECT_EQ(wkt, ix.crs_wkt);
+            EXPECT_NEAR(gt[0], d.info.geotransform[0] + c * 512 * dx, 1e-6);
+            EXPECT_NEAR(gt[3], d.info.geotransform[3] + r * 512 * dy, 1e-6);
+            const BandMapping m = read_band_mapping(tile);
+            const Image2D<float> raw = read_raster_band(tile);
+            for (int i = 0; i < 513 && r * 512 + i < d.terrain.rows(); i += 37)
+                for (int j = 0; j < 513 && c * 512 + j < d.terrain.cols(); j += 37) {
+                    EXPECT_NEAR(raw.at(j, i) * m.scale + m.offset, d.terrain.sample_height(r * 512 + i, c * 512 + j),
+                                0.5 * d.terrain.v_scale() + 1e-3);
+                    ++checked;
+                }
+        }
+    EXPECT_GT(checked, 300);
 }
