@@ -8,10 +8,12 @@
 #include "RoamMethod.h"
 #include "core/Error.h"
 #include "io/SceneFile.h"
+#include "lod/QuadtreeAccuracy.h"
 #include "raycast/FloatingHorizon.h"
 #include "raycast/FloatingHorizonLiteral.h"
 #include "raycast/RayMarcher.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -205,6 +207,21 @@ public:
         stats = nlohmann::json::parse(quadtree_.stats_json());
         session_.gl().render_mesh(mesh_, camera, color, session_.want_depth ? &depth : nullptr, stats);
         stats["ms"]["draw"] = stats["ms"]["terrain"];
+    }
+    // Zamri's figures against full resolution: how many fewer triangles than
+    // two per cell, and the screen-space error the --error target bounds. A
+    // tile directory's full resolution is never in memory, so it has neither.
+    void bench_extras(const Camera& camera, nlohmann::json& run) override {
+        if (!session_.tile_dir().empty()) return;
+        const Terrain& t = session_.data().terrain;
+        quadtree_.build(camera, session_.settings().error_px, mesh_);
+        const double full = 2.0 * double(t.rows() - 1) * double(t.cols() - 1);
+        const ScreenError e = screen_space_error(mesh_, t, camera);
+        run["full_resolution_triangles"] = full;
+        run["triangle_reduction"] = full / double(std::max<std::size_t>(1, mesh_.triangle_count()));
+        run["max_error_px"] = e.max_px;
+        run["mean_error_px"] = e.mean_px;
+        run["p99_error_px"] = e.p99_px;
     }
 
 private:
