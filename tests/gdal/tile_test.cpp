@@ -1,8 +1,8 @@
 // `overflight tile`: overlapping tiles reassemble exactly to the padded
 // source, existence flags, georeferencing on real DEMs, an interrupted
 // tiling (and a killed tiler) that re-runs to the same result, tile-edge
-// normals equal to the whole terrain's, and the overview that stands in for
-// a terrain larger than memory.
+// normals equal to the whole terrain's, the overview that stands in for
+// a terrain larger than memory, and reduced levels that keep exact samples.
 #include "TestSupport.h"
 
 #include "core/DemoIsland.h"
@@ -13,6 +13,7 @@
 #include "lod/TileSet.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -451,4 +452,57 @@ TEST(Tile, SrtmTilesCarryTheReprojectedGrid) {
                 }
         }
     EXPECT_GT(checked, 300);
+}
+
+// Each tile file holds levels of every 2^m-th sample, exactly the samples
+// (not resampled), so that reduced neighbours share their edge samples; the
+// index carries each tile's roughness. A directory of an older tiler
+// (no levels) still renders, at full resolution.
+TEST(Tile, ReducedLevelsKeepExactSamples) {
+    test::ScratchDir dir;
+    const DataSet d = small_island();
+    TileWriteOptions o;
+    o.tile_size = 33;
+    write_tile_directory(d, dir.path.string(), o);
+    const TileIndex ix = read_tile_index(dir.path.string());
+    ASSERT_EQ(ix.levels, 4); // 17, 9, 5, 3 samples
+    EXPECT_EQ(ix.grid.max_level, 4);
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) {
+            const TileSamples full = read_tile(dir.path.string(), ix, r, c);
+            EXPECT_EQ(ix.grid.roughness[ix.grid.index(r, c)], rottger_roughness(full.samples));
+            for (int m = 1; m <= 4; ++m) {
+                const TileSamples red = read_tile(dir.path.string(), ix, r, c, true, m);
+                const int n = 32 / (1 << m) + 1;
+                ASSERT_EQ(red.samples.rows(), n);
+                EXPECT_EQ(red.samples.h_scale(), d.terrain.h_scale() * float(1 << m));
+                EXPECT_TRUE(red.normals.empty());
+                for (int i = 0; i < n; ++i)
+                    for (int j = 0; j < n; ++j) {
+                        ASSERT_EQ(red.samples.raw(i, j), full.samples.raw(i << m, j << m)) << r << "," << c << " level " << m;
+                        ASSERT_EQ(red.samples.color(i, j), full.samples.color(i << m, j << m));
+                    }
+            }
+        }
+    EXPECT_THROW(read_tile(dir.path.string(), ix, 1, 1, true, 5), Error);
+
+    // An older tiler's index: no levels, no roughness.
+    const fs::path index = dir.path / "index.json";
+    nlohmann::json j = nlohmann::json::parse(bytes_of(index));
+    j.erase("levels");
+    j.erase("roughness");
+    std::ofstream(index) << j.dump();
+    const TileIndex old = read_tile_index(dir.path.string());
+    EXPECT_EQ(old.levels, 0);
+    EXPECT_EQ(old.grid.max_level, 0);
+    TileSet set(old.grid, tile_directory_loader(dir.path.string(), old), std::size_t(1) << 30);
+    Camera cam;
+    cam.eye = {-3000, 2000, -3000};
+    cam.heading = 45;
+    cam.pitch = -20;
+    cam.far = 20000;
+    MeshArrays m;
+    const TileFrameStats s = set.build_mesh(cam, 1.0, m);
+    EXPECT_GT(s.visible, 0);
+    EXPECT_EQ(s.per_level[0], s.visible);
 }
