@@ -61,15 +61,17 @@ double propagated_d2_bound(const std::vector<float>& roughness, int j, double mi
 }
 
 RottgerQuadtree::RottgerQuadtree(const Terrain& samples, const std::vector<glm::vec3>& normals, int origin_row,
-                                 int origin_col, double min_resolution, int step, double finer_d2)
+                                 int origin_col, double min_resolution, int step, double finer_d2,
+                                 const std::vector<float>* finest_d2)
     : terrain_(&samples), normals_(&normals), n_(samples.rows()), origin_row_(origin_row), origin_col_(origin_col),
-      step_(step), hs_full_(double(samples.h_scale()) / step), C_(min_resolution), finer_d2_(finer_d2) {
+      step_(step), hs_full_(double(samples.h_scale()) / step), C_(min_resolution) {
     if (samples.rows() != samples.cols() || !is_pow2_plus1(samples.rows()) || samples.rows() < 3)
         throw Error("quadtree", "patch of " + std::to_string(samples.rows()) + "x" + std::to_string(samples.cols()) +
                                     " samples is not (2^k+1)^2 with k >= 1");
     if (normals.size() != samples.heights().size()) throw Error("quadtree", "one normal per sample is needed");
     if (!(min_resolution > 1)) throw Error("quadtree", "minimum resolution C must be greater than 1");
     if (step < 1 || (step & (step - 1)) != 0) throw Error("quadtree", "sample step must be a power of two");
+    if (finest_d2 && finest_d2->size() != samples.heights().size()) throw Error("quadtree", "one d2 per sample is needed");
     const std::size_t count = std::size_t(n_) * std::size_t(n_);
     d2_.assign(count, 0.0f);
     lo_.assign(count, 0);
@@ -77,7 +79,7 @@ RottgerQuadtree::RottgerQuadtree(const Terrain& samples, const std::vector<glm::
     stamp_.assign(count, 0);
     vertex_id_.assign(count, 0);
     vertex_stamp_.assign(count, 0);
-    compute_d2();
+    build_matrix(samples, C_, finest_d2, finer_d2, d2_, lo_, hi_);
 }
 
 std::size_t RottgerQuadtree::matrix_bytes(int n) {
@@ -90,40 +92,55 @@ std::size_t RottgerQuadtree::memory_bytes() const {
            (ring_.capacity() + edge_.capacity()) * sizeof(std::array<int, 2>);
 }
 
-void RottgerQuadtree::compute_d2() {
-    // Bottom-up over the levels so that each parent sees its children's
-    // final (already propagated) values (Röttger sec. 3.3).
-    const double K = propagation_k(C_);
-    const int root = (n_ - 1) / 2;
+// The quadtree matrix (Röttger sec. 3.3): d2 bottom-up over the levels so
+// that each parent sees its children's final (already propagated) values,
+// and each node's raw height range. For a reduced patch, the finest nodes
+// take the full tree's d2 from `finest` (exact) or, without it, are raised
+// by K * finer_d2 (a bound on the full-resolution children it dropped).
+void RottgerQuadtree::build_matrix(const Terrain& t, double C, const std::vector<float>* finest, double finer_d2,
+                                   std::vector<float>& d2, std::vector<std::uint16_t>& lo_out,
+                                   std::vector<std::uint16_t>& hi_out) {
+    const int n = t.rows();
+    auto at = [n](int i, int j) { return std::size_t(i) * std::size_t(n) + std::size_t(j); };
+    const double K = propagation_k(C);
+    const int root = (n - 1) / 2;
     for (int h = 1; h <= root; h *= 2) {
-        const double d = 2.0 * h * terrain_->h_scale();
-        for (int ci = h; ci < n_; ci += 2 * h)
-            for (int cj = h; cj < n_; cj += 2 * h) {
-                double v = node_dh(*terrain_, ci, cj, h) / d;
-                std::uint16_t lo = terrain_->raw(ci, cj), hi = lo;
+        const double d = 2.0 * h * t.h_scale();
+        for (int ci = h; ci < n; ci += 2 * h)
+            for (int cj = h; cj < n; cj += 2 * h) {
+                double v = node_dh(t, ci, cj, h) / d;
+                std::uint16_t lo = t.raw(ci, cj), hi = lo;
                 if (h > 1) {
                     const int q = h / 2;
-                    v = std::max({v, K * d2_[idx(ci - q, cj - q)], K * d2_[idx(ci - q, cj + q)],
-                                  K * d2_[idx(ci + q, cj - q)], K * d2_[idx(ci + q, cj + q)]});
-                    for (const std::size_t k : {idx(ci - q, cj - q), idx(ci - q, cj + q), idx(ci + q, cj - q),
-                                                idx(ci + q, cj + q)}) {
-                        lo = std::min(lo, lo_[k]);
-                        hi = std::max(hi, hi_[k]);
+                    for (const std::size_t k : {at(ci - q, cj - q), at(ci - q, cj + q), at(ci + q, cj - q),
+                                                at(ci + q, cj + q)}) {
+                        v = std::max(v, K * d2[k]);
+                        lo = std::min(lo, lo_out[k]);
+                        hi = std::max(hi, hi_out[k]);
                     }
                 } else {
-                    // The full-resolution children a reduced patch dropped.
-                    v = std::max(v, K * finer_d2_);
+                    v = finest ? std::max(v, double((*finest)[at(ci, cj)])) : std::max(v, K * finer_d2);
                     for (int i = ci - 1; i <= ci + 1; ++i)
                         for (int j = cj - 1; j <= cj + 1; ++j) {
-                            lo = std::min(lo, terrain_->raw(i, j));
-                            hi = std::max(hi, terrain_->raw(i, j));
+                            lo = std::min(lo, t.raw(i, j));
+                            hi = std::max(hi, t.raw(i, j));
                         }
                 }
-                d2_[idx(ci, cj)] = float(v);
-                lo_[idx(ci, cj)] = lo;
-                hi_[idx(ci, cj)] = hi;
+                d2[at(ci, cj)] = float(v);
+                lo_out[at(ci, cj)] = lo;
+                hi_out[at(ci, cj)] = hi;
             }
     }
+}
+
+std::vector<float> rottger_d2(const Terrain& patch, double min_resolution) {
+    const int n = patch.rows();
+    if (n != patch.cols() || !is_pow2_plus1(n) || n < 3) throw Error("quadtree", "d2 needs a (2^k+1)^2 patch");
+    const std::size_t count = std::size_t(n) * std::size_t(n);
+    std::vector<float> d2(count, 0.0f);
+    std::vector<std::uint16_t> lo(count), hi(count);
+    RottgerQuadtree::build_matrix(patch, min_resolution, nullptr, 0.0, d2, lo, hi);
+    return d2;
 }
 
 void RottgerQuadtree::refine(const glm::dvec3& eye, double c, const Frustum* frustum) {

@@ -62,9 +62,12 @@
 // whose finest nodes are the full tree's nodes of half-size `step`: their
 // check points are samples the decimated patch keeps, so their own d2 is
 // exact, but the d2 their full-resolution children would have propagated up
-// is lost. `finer_d2` (a bound on the children's propagated d2, from
-// rottger_roughness()) restores it, so d2 stays >= the full tree's at every
-// node and the reduced patch never stops where the full one would refine.
+// is lost. The full tree's d2 at the finest nodes (`finest_d2`, stored by the
+// tiler from rottger_d2()) restores it exactly: every node then has the full
+// tree's d2. Without it, `finer_d2` (a bound on the children's propagated
+// d2, from rottger_roughness()) keeps d2 >= the full tree's at every node, at
+// the cost of more triangles. Either way the reduced patch never stops
+// where the full one would refine.
 // Across a seam with a coarser patch, the finer one can only share vertices
 // the coarser one has: set_seam_ratio() keeps the finer patch's nodes along
 // that edge from being subdivided into nodes smaller than the coarser
@@ -96,6 +99,9 @@ std::vector<float> rottger_roughness(const Terrain& patch);
 // roughness above: e_0 = r_0, e_j = max(r_j, K e_(j-1)), K = C / (2 (C - 1))
 // (Röttger sec. 3.3 applied to the per-level maxima).
 double propagated_d2_bound(const std::vector<float>& roughness, int j, double min_resolution);
+// The propagated d2 of every node of a (2^k+1)^2 patch, at its centre sample
+// (0 where no node is centred): Röttger's quadtree matrix for min_resolution C.
+std::vector<float> rottger_d2(const Terrain& patch, double min_resolution);
 
 class RottgerQuadtree {
 public:
@@ -109,12 +115,15 @@ public:
     // A reduced patch holds every `step`-th sample (a power of two; its
     // h_scale is step times the full grid's, origins stay in full-grid
     // indices) and `finer_d2` bounds the propagated d2 of the full tree's
-    // nodes of half-size step / 2 (see above; 0 for a full patch).
+    // nodes of half-size step / 2 (see above; 0 for a full patch), unless
+    // `finest_d2` gives the full tree's d2 at each sample of the reduced
+    // patch (only read while constructing).
     // Throws Error("quadtree", ...) for a patch that is not (2^k+1)^2 or
     // normals of the wrong size. Both are referenced, not copied: they must
     // outlive the quadtree.
     RottgerQuadtree(const Terrain& samples, const std::vector<glm::vec3>& normals, int origin_row, int origin_col,
-                    double min_resolution = 4.0, int step = 1, double finer_d2 = 0.0);
+                    double min_resolution = 4.0, int step = 1, double finer_d2 = 0.0,
+                    const std::vector<float>* finest_d2 = nullptr);
 
     int size() const { return n_; }
     int origin_row() const { return origin_row_; }
@@ -161,7 +170,9 @@ public:
 private:
     std::size_t idx(int row, int col) const { return std::size_t(row) * std::size_t(n_) + std::size_t(col); }
     float world_y(int row, int col) const { return terrain_->sample_height(row, col); }
-    void compute_d2();
+    friend std::vector<float> rottger_d2(const Terrain& patch, double min_resolution);
+    static void build_matrix(const Terrain& t, double C, const std::vector<float>* finest, double finer_d2,
+                             std::vector<float>& d2, std::vector<std::uint16_t>& lo, std::vector<std::uint16_t>& hi);
     void refine_node(int ci, int cj, int h, bool inside);
     void emit_leaves(int ci, int cj, int h);
     struct NodeRef {
@@ -182,7 +193,6 @@ private:
     int step_ = 1;
     double hs_full_ = 1.0; // h_scale of the full grid: world X = hs_full_ * (origin_col_ + step_ * col)
     double C_ = 4.0;
-    double finer_d2_ = 0.0;
     std::array<int, 4> seam_ratio_{1, 1, 1, 1};
     std::vector<float> d2_;
     std::vector<std::uint16_t> lo_, hi_; // per node: raw height range of its samples
