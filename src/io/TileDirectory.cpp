@@ -27,10 +27,10 @@ namespace overflight {
 
 namespace {
 
-enum class TileFile { Heights, Colors, Apron };
+enum class TileFile { Heights, Colors, Apron, D2 };
 
 std::string tile_name(int r, int c, TileFile f) {
-    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif"};
+    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif", "_d2.tif"};
     return "r" + std::to_string(r) + "_c" + std::to_string(c) + suffix[int(f)];
 }
 
@@ -40,6 +40,8 @@ std::string tile_path(const std::string& dir, int r, int c, TileFile f) {
 
 const char* const kOverviewHeights = "overview.tif";
 const char* const kOverviewColors = "overview_rgb.tif";
+// Röttger's C the stored d2 is computed for: TileSet's default.
+const double kD2MinResolution = 4.0;
 
 std::array<double, 6> tile_geotransform(const TileIndex& ix, int r, int c) {
     std::array<double, 6> gt = ix.geotransform;
@@ -91,6 +93,7 @@ json index_to_json(const TileIndex& ix) {
                 {"apron", ix.apron},
                 {"levels", ix.levels},
                 {"roughness", roughness},
+                {"d2_min_resolution", g.d2_min_resolution},
                 {"overview", ix.overview_stride > 1 ? json{{"stride", ix.overview_stride},
                                                             {"rows", ix.overview_rows},
                                                             {"cols", ix.overview_cols},
@@ -162,7 +165,7 @@ void write_raster(const std::string& path, const RasterSpec& spec) {
     GDALDriverH gtiff = GDALGetDriverByName("GTiff");
     char** co = nullptr;
     co = CSLSetNameValue(co, "COMPRESS", "DEFLATE");
-    co = CSLSetNameValue(co, "PREDICTOR", "2");
+    co = CSLSetNameValue(co, "PREDICTOR", spec.type == GDT_Float32 ? "3" : "2");
     struct OptionsFree {
         char** p;
         ~OptionsFree() { CSLDestroy(p); }
@@ -226,6 +229,18 @@ void write_tile_files(const std::string& dir, const TileIndex& ix, int r, int c,
     for (const auto* side : {&apron.north, &apron.south, &apron.west, &apron.east})
         sides.insert(sides.end(), side->begin(), side->end());
     write_raster(tile_path(dir, r, c, TileFile::Apron), {n, 4, 1, GDT_UInt16, sides.data(), nullptr, "", nullptr, false});
+    if (ix.levels > 0) {
+        // The full tile's d2 at its even samples (the centres of all nodes a
+        // level >= 1 keeps), with levels of every 2^m-th of them: level m of
+        // the tile reads level m - 1 of this file.
+        const std::vector<float> d2 = rottger_d2(t.samples, ix.grid.d2_min_resolution);
+        const int h = (n - 1) / 2 + 1;
+        std::vector<float> even(std::size_t(h) * std::size_t(h));
+        for (int i = 0; i < h; ++i)
+            for (int j = 0; j < h; ++j) even[std::size_t(i) * std::size_t(h) + std::size_t(j)] = d2[t.samples.index(2 * i, 2 * j)];
+        write_raster(tile_path(dir, r, c, TileFile::D2),
+                     {h, h, 1, GDT_Float32, even.data(), nullptr, "", nullptr, false, ix.levels - 1});
+    }
     write_raster(tile_path(dir, r, c, TileFile::Heights),
                  {n, n, 1, GDT_UInt16, t.samples.heights().data(), &gt, ix.crs_wkt, &ix.grid, false, ix.levels});
 }
@@ -328,6 +343,7 @@ TileIndex parse_index(const std::string& path, bool require_complete) {
         // Written by later versions of the tiler; absent means none.
         ix.apron = j.value("apron", false);
         ix.levels = j.value("levels", 0);
+        g.d2_min_resolution = j.value("d2_min_resolution", 0.0);
         if (j.contains("overview") && !j.at("overview").is_null()) {
             const auto& o = j.at("overview");
             ix.overview_stride = o.at("stride").get<int>();
@@ -369,6 +385,8 @@ TileIndex parse_index(const std::string& path, bool require_complete) {
         throw Error(path, std::string("malformed index: ") + e.what());
     }
     if (ix.levels < 0 || ix.levels > 30) throw Error(path, "levels out of range");
+    if (ix.grid.d2_min_resolution != 0 && !(ix.grid.d2_min_resolution > 1))
+        throw Error(path, "d2_min_resolution must be 0 or greater than 1");
     ix.grid.validate(path);
     if (ix.padded_size != ix.grid.padded_rows() || ix.padded_size != ix.grid.padded_cols())
         throw Error(path, "source and padded sizes do not match the tile grid");
@@ -431,6 +449,7 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
     }
     ix.apron = true;
     ix.levels = ix.grid.coarsest_level();
+    ix.grid.d2_min_resolution = ix.levels > 0 ? kD2MinResolution : 0.0;
     const int f = overview_stride(t.rows(), t.cols(), options.overview_max_side);
     if (f > 1) {
         ix.overview_stride = f;
@@ -456,7 +475,8 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
             const TileIndex old = parse_index(index_path, false);
             resume = old.checksum == ix.checksum && old.grid.tile_size == ix.grid.tile_size &&
                      old.geotransform == ix.geotransform && old.crs_wkt == ix.crs_wkt && old.apron &&
-                     old.overview_stride == ix.overview_stride && old.levels == ix.levels;
+                     old.overview_stride == ix.overview_stride && old.levels == ix.levels &&
+                     old.grid.d2_min_resolution == ix.grid.d2_min_resolution;
         } catch (const Error&) {
             resume = false;
         }
@@ -479,15 +499,16 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
     for (int r = 0; r < ix.grid.tile_rows; ++r)
         for (int c = 0; c < ix.grid.tile_cols; ++c) {
             const std::string paths[] = {tile_path(dir, r, c, TileFile::Heights), tile_path(dir, r, c, TileFile::Colors),
-                                         tile_path(dir, r, c, TileFile::Apron)};
+                                         tile_path(dir, r, c, TileFile::Apron), tile_path(dir, r, c, TileFile::D2)};
             if (!ix.grid.present(r, c)) {
                 ++report.empty;
                 for (const auto& p : paths) fs::remove(p, ec); // left over from an earlier tiling of another source
             } else {
                 const TileSamples tile = cut_tile(t, ix.grid, r, c, false);
                 roughness[ix.grid.index(r, c)] = rottger_roughness(tile.samples);
-                if (resume && std::all_of(std::begin(paths), std::end(paths),
-                                          [](const std::string& p) { return fs::exists(p); })) {
+                if (resume && std::all_of(std::begin(paths), std::end(paths), [&](const std::string& p) {
+                        return fs::exists(p) || (ix.levels == 0 && p == paths[3]);
+                    })) {
                     ++report.skipped;
                 } else {
                     write_tile_files(dir, ix, r, c, tile, cut_apron(t, ix.grid, r, c));
@@ -523,6 +544,10 @@ TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c,
     if (!ix.grid.present(r, c)) throw Error(h_path, "tile is flagged 0 (no data) in index.json");
     read_raster(h_path, n, n, 1, GDT_UInt16, t.samples.heights().data(), step);
     read_colors(tile_path(dir, r, c, TileFile::Colors), t.samples, step);
+    if (level > 0 && ix.grid.d2_min_resolution > 0) {
+        t.d2.resize(std::size_t(n) * std::size_t(n));
+        read_raster(tile_path(dir, r, c, TileFile::D2), n, n, 1, GDT_Float32, t.d2.data(), step / 2);
+    }
     if (with_normals && ix.apron && level == 0) {
         std::vector<std::uint16_t> sides(4 * std::size_t(n));
         read_raster(tile_path(dir, r, c, TileFile::Apron), n, 4, 1, GDT_UInt16, sides.data());

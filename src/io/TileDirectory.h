@@ -24,7 +24,9 @@
 //                        older directories), roughness (per tile the
 //                        lod/RottgerQuadtree.h rottger_roughness() of its
 //                        samples, [] for tiles flagged 0; null until the
-//                        run completes), complete (false while tiling runs).
+//                        run completes), d2_min_resolution (Röttger's C of
+//                        the _d2 files, 0 without them), complete (false
+//                        while tiling runs).
 //                        Without levels and roughness, tiles are read at full
 //                        resolution only.
 //   r{R}_c{C}.tif        heights: 1 band UInt16, tile_size^2, DEFLATE,
@@ -39,6 +41,11 @@
 //                        and overviews.
 //                        A separate file because GeoTIFF bands share one data
 //                        type: RGB as UInt16 bands would double its size.
+//   r{R}_c{C}_d2.tif     with levels: Float32, ((s-1)/2+1)^2, the full tile's
+//                        propagated d2 (lod/RottgerQuadtree.h rottger_d2)
+//                        at its even samples, with overviews of every
+//                        2^m-th: a tile read at level m takes level m - 1 of
+//                        it, so its quadtree has the full tile's d2.
 //   r{R}_c{C}_apron.tif  the raw samples just outside the tile (lod/TileSet.h
 //                        TileApron): 4 rows of tile_size UInt16 (north, south,
 //                        west, east), so that the loader computes normals at
@@ -116,7 +123,8 @@ bool is_tile_directory(const std::string& path);
 TileIndex read_tile_index(const std::string& dir);
 
 // Reads tile (r, c) at `level` (every 2^level-th sample, 0 .. index.levels):
-// heights in raw units with the index's mapping, colors, and at level 0
+// heights in raw units with the index's mapping, colors, above level 0 the
+// full tile's d2 at each sample (when the directory has _d2 files), and at level 0
 // with the apron files (index.apron) normals equal to the whole terrain's
 // (lod/TileSet.h tile_normals); otherwise normals are left empty (TileSet
 // computes one-sided ones: a reduced tile is far away, where the lighting

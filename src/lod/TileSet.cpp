@@ -244,10 +244,15 @@ TileSet::Tile& TileSet::acquire(const Pick& p, int done_row, TileFrameStats& sta
         for (int i = 0; i < s.rows(); ++i)
             for (int j = 0; j < s.cols(); ++j) tile->data.normals[s.index(i, j)] = s.sample_normal(i, j);
     }
+    // A reduced tile takes the full tile's d2 when the loader has it for our
+    // C, else the bound from the roughness (lod/RottgerQuadtree.h).
+    const bool exact = p.level > 0 && grid_.d2_min_resolution == C_ && tile->data.d2.size() == s.heights().size();
     const double finer_d2 =
-        p.level > 0 ? propagated_d2_bound(grid_.roughness[grid_.index(p.row, p.col)], p.level - 1, C_) : 0.0;
+        p.level > 0 && !exact ? propagated_d2_bound(grid_.roughness[grid_.index(p.row, p.col)], p.level - 1, C_) : 0.0;
     tile->quadtree = std::make_unique<RottgerQuadtree>(tile->data.samples, tile->data.normals, p.row * grid_.stride(),
-                                                       p.col * grid_.stride(), C_, 1 << p.level, finer_d2);
+                                                       p.col * grid_.stride(), C_, 1 << p.level, finer_d2,
+                                                       exact ? &tile->data.d2 : nullptr);
+    tile->data.d2 = {}; // only needed to build the matrix
     tile->bytes = sizeof(Tile) + s.heights().size() * (sizeof(std::uint16_t) + sizeof(Rgb8) + sizeof(glm::vec3)) +
                   tile->quadtree->memory_bytes();
     tile->used_frame = frame_;

@@ -20,8 +20,10 @@
 // half-size 2^m of a tile can be subdivided at the tile's distance (checked
 // before loading, with the tile's per-level roughness from the index), the
 // tile is loaded at level m: every 2^m-th sample, 4^m times less memory.
-// The cache is keyed by (tile, level); a reduced quadtree keeps its d2
-// conservative and stitches to neighbours of other levels (lod/RottgerQuadtree.h).
+// The cache is keyed by (tile, level); a reduced quadtree gets the full
+// tile's d2 from the loader (or a conservative bound without it), so it
+// refines as the full tile would, and stitches to neighbours of other levels
+// (lod/RottgerQuadtree.h).
 // If even the visible tiles at their levels exceed the memory bound, the
 // frame is built row by row of tiles and drawn tiles are evicted once their
 // neighbours' fans are done (streamed within the frame).
@@ -56,6 +58,9 @@ struct TileGrid {
     // rottger_roughness() of its full samples (empty when levels are unknown).
     int max_level = 0;
     std::vector<std::vector<float>> roughness;
+    // Röttger's C for which the loader gives reduced tiles the full tile's
+    // d2 (TileSamples::d2); 0: it does not, a bound from the roughness is used.
+    double d2_min_resolution = 0.0;
 
     int stride() const { return tile_size - 1; }
     std::size_t index(int r, int c) const { return std::size_t(r) * std::size_t(tile_cols) + std::size_t(c); }
@@ -77,10 +82,12 @@ struct TileGrid {
 // (every 2^level-th sample of the tile: heights, colors, the grid's vertical
 // scales, h_scale times 2^level) and optionally one normal per sample
 // (empty: computed from the tile's own samples, one-sided on its border,
-// which shows a lighting seam where tiles meet).
+// which shows a lighting seam where tiles meet), and for a reduced level
+// optionally the full tile's rottger_d2() at each sample (empty: bounded).
 struct TileSamples {
     Terrain samples;
     std::vector<glm::vec3> normals;
+    std::vector<float> d2;
 };
 using TileLoader = std::function<TileSamples(int tile_row, int tile_col, int level)>;
 

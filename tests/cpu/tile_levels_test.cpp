@@ -1,6 +1,6 @@
 // Reduced tile levels (lod/TileSet.h "Levels", lod/RottgerQuadtree.h
-// "Reduced patches"): a reduced quadtree's d2 never falls below the full
-// one's, the level chosen before loading is one at which the full tile would
+// "Reduced patches"): a reduced quadtree's d2 equals the full one's with the
+// stored d2 and never falls below it with the roughness bound, the level chosen before loading is one at which the full tile would
 // not have refined further, tiles at different levels stitch without cracks,
 // and a visible set larger than the memory bound streams within the frame to
 // the same mesh.
@@ -62,6 +62,23 @@ int open_edges(const MeshArrays& m, const std::vector<std::pair<int, int>>& visi
     return open;
 }
 
+// A loader that also gives reduced tiles the full tile's d2 (as a tile
+// directory does from its _d2 files).
+TileLoader loader_with_d2(const Terrain& t, TileGrid& g) {
+    g.d2_min_resolution = 4.0;
+    return [&t, g, base = terrain_tile_loader(t, g)](int r, int c, int level) {
+        TileSamples s = base(r, c, level);
+        if (level > 0) {
+            const std::vector<float> full = rottger_d2(cut_tile(t, g, r, c, false).samples, 4.0);
+            const int n = s.samples.rows();
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j)
+                    s.d2.push_back(full[std::size_t(i << level) * std::size_t(g.tile_size) + std::size_t(j << level)]);
+        }
+        return s;
+    };
+}
+
 int levels_used(const TileFrameStats& s) {
     int n = 0;
     for (const int k : s.per_level) n += k > 0;
@@ -92,6 +109,31 @@ TEST(TileLevels, ReducedD2StaysConservative) {
                         const float full_d2 = q.d2(ci << m, cj << m);
                         ASSERT_GE(rq.d2(ci, cj), full_d2 * (1 - 1e-5f)) << "level " << m << " node " << ci << "," << cj;
                     }
+        }
+    }
+}
+
+// With the full tile's d2 at its samples, every node of a reduced quadtree
+// has exactly the full quadtree's d2: the reduced tile refines as the full
+// one would.
+TEST(TileLevels, ReducedD2FromTheFullTileIsExact) {
+    const Terrain t = island(257);
+    TileGrid g = terrain_tile_grid(t, 65);
+    for (const auto& [r, c] : {std::pair{1, 1}, std::pair{2, 1}, std::pair{3, 2}}) {
+        const TileSamples full = cut_tile(t, g, r, c, true);
+        const RottgerQuadtree q(full.samples, full.normals, r * 64, c * 64, 4.0);
+        const std::vector<float> d2 = rottger_d2(full.samples, 4.0);
+        for (int m = 1; m <= g.coarsest_level(); ++m) {
+            const TileSamples red = cut_tile(t, g, r, c, true, m);
+            const int n = red.samples.rows();
+            std::vector<float> finest;
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) finest.push_back(d2[full.samples.index(i << m, j << m)]);
+            const RottgerQuadtree rq(red.samples, red.normals, r * 64, c * 64, 4.0, 1 << m, 0.0, &finest);
+            for (int h = 1; 2 * h < n; h *= 2)
+                for (int ci = h; ci < n; ci += 2 * h)
+                    for (int cj = h; cj < n; cj += 2 * h)
+                        ASSERT_EQ(rq.d2(ci, cj), q.d2(ci << m, cj << m)) << "level " << m << " node " << ci << "," << cj;
         }
     }
 }
@@ -128,19 +170,23 @@ TEST(TileLevels, NoCrackBetweenLevels) {
     const Terrain t = island(1025);
     TileGrid g = terrain_tile_grid(t, 65);
     add_tile_levels(t, g);
-    TileSet set(g, terrain_tile_loader(t, g), std::size_t(1) << 30);
+    TileGrid gd = g;
+    TileSet bounded(g, terrain_tile_loader(t, g), std::size_t(1) << 30);
+    const TileLoader exact_loader = loader_with_d2(t, gd);
+    TileSet exact(gd, exact_loader, std::size_t(1) << 30);
     const float W = t.width();
-    for (const auto& [eye, heading, pitch] :
-         {std::tuple{glm::dvec3(500, t.max_height() + 100, -100), 20.0, -8.0},
-          std::tuple{glm::dvec3(W / 2, t.max_height() + 30, W / 2), 135.0, -5.0},
-          std::tuple{glm::dvec3(W / 3, 3000, W / 3), 60.0, -35.0}}) {
-        for (const double err : {0.5, 1.0, 4.0}) {
-            MeshArrays m;
-            const TileFrameStats s = set.build_mesh(camera_at(eye, heading, pitch, 40000), err, m);
-            EXPECT_GE(levels_used(s), 2) << "error " << err << " view " << heading;
-            EXPECT_EQ(open_edges(m, set.visible_tiles(), float(g.tile_world_size())), 0) << "error " << err;
-        }
-    }
+    const std::tuple<glm::dvec3, double, double> views[] = {
+        {glm::dvec3(500, t.max_height() + 100, -100), 20.0, -8.0},
+        {glm::dvec3(W / 2, t.max_height() + 30, W / 2), 135.0, -5.0},
+        {glm::dvec3(W / 3, 3000, W / 3), 60.0, -35.0}};
+    for (TileSet* set : {&bounded, &exact})
+        for (const auto& [eye, heading, pitch] : views)
+            for (const double err : {0.5, 1.0, 4.0}) {
+                MeshArrays m;
+                const TileFrameStats s = set->build_mesh(camera_at(eye, heading, pitch, 40000), err, m);
+                EXPECT_GE(levels_used(s), 2) << "error " << err << " view " << heading;
+                EXPECT_EQ(open_edges(m, set->visible_tiles(), float(g.tile_world_size())), 0) << "error " << err;
+            }
 }
 
 // A bound below one frame's visible set: the frame is built row by row and

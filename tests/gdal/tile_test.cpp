@@ -455,8 +455,8 @@ TEST(Tile, SrtmTilesCarryTheReprojectedGrid) {
 }
 
 // Each tile file holds levels of every 2^m-th sample, exactly the samples
-// (not resampled), so that reduced neighbours share their edge samples; the
-// index carries each tile's roughness. A directory of an older tiler
+// (not resampled), so that reduced neighbours share their edge samples, and
+// the full tile's d2 at them; the index carries each tile's roughness. A directory of an older tiler
 // (no levels) still renders, at full resolution.
 TEST(Tile, ReducedLevelsKeepExactSamples) {
     test::ScratchDir dir;
@@ -467,10 +467,12 @@ TEST(Tile, ReducedLevelsKeepExactSamples) {
     const TileIndex ix = read_tile_index(dir.path.string());
     ASSERT_EQ(ix.levels, 4); // 17, 9, 5, 3 samples
     EXPECT_EQ(ix.grid.max_level, 4);
+    EXPECT_EQ(ix.grid.d2_min_resolution, 4.0);
     for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) {
             const TileSamples full = read_tile(dir.path.string(), ix, r, c);
             EXPECT_EQ(ix.grid.roughness[ix.grid.index(r, c)], rottger_roughness(full.samples));
+            const std::vector<float> d2 = rottger_d2(full.samples, 4.0);
             for (int m = 1; m <= 4; ++m) {
                 const TileSamples red = read_tile(dir.path.string(), ix, r, c, true, m);
                 const int n = 32 / (1 << m) + 1;
@@ -481,6 +483,7 @@ TEST(Tile, ReducedLevelsKeepExactSamples) {
                     for (int j = 0; j < n; ++j) {
                         ASSERT_EQ(red.samples.raw(i, j), full.samples.raw(i << m, j << m)) << r << "," << c << " level " << m;
                         ASSERT_EQ(red.samples.color(i, j), full.samples.color(i << m, j << m));
+                        ASSERT_EQ(red.d2[red.samples.index(i, j)], d2[full.samples.index(i << m, j << m)]);
                     }
             }
         }
@@ -491,6 +494,7 @@ TEST(Tile, ReducedLevelsKeepExactSamples) {
     nlohmann::json j = nlohmann::json::parse(bytes_of(index));
     j.erase("levels");
     j.erase("roughness");
+    j.erase("d2_min_resolution");
     std::ofstream(index) << j.dump();
     const TileIndex old = read_tile_index(dir.path.string());
     EXPECT_EQ(old.levels, 0);
