@@ -144,7 +144,7 @@ TEST(Tile, InterruptedRunResumesToTheSameResult) {
     int files2 = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path)) ++files2;
     EXPECT_EQ(files, files2);
-    EXPECT_EQ(files, 49); // 16 heights + 16 colors + 16 aprons + index.json
+    EXPECT_EQ(files, 65); // 16 heights + 16 colors + 16 aprons + 16 d2 + index.json
 
     // A different source does not resume: everything is rewritten.
     DataSet other = d;
@@ -215,7 +215,8 @@ TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
         for (const auto& e : fs::directory_iterator(dir, ec)) {
             const std::string name = e.path().filename().string();
             n += name[0] == 'r' && name.size() > 4 && name.compare(name.size() - 4, 4, ".tif") == 0 &&
-                 name.find("_rgb") == std::string::npos && name.find("_apron") == std::string::npos;
+                 name.find("_rgb") == std::string::npos && name.find("_apron") == std::string::npos &&
+                 name.find("_d2") == std::string::npos;
         }
         return n;
     };
@@ -265,7 +266,7 @@ TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
         ++files;
         EXPECT_EQ(bytes_of(e.path()), bytes_of(fs::path(ref) / e.path().filename())) << e.path().filename();
     }
-    EXPECT_EQ(files, 3 * 1024 + 1);
+    EXPECT_EQ(files, 4 * 1024 + 1);
     EXPECT_EQ(read_tile_index(dir).checksum, read_tile_index(ref).checksum);
 }
 
