@@ -344,18 +344,40 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
                 ++stats.culled;
                 continue;
             }
-            int level = needed_level(r, c2, camera.eye, c_rottger);
-            // A finer level already in the cache serves as well, without I/O.
-            for (int l = level; l >= 0; --l)
-                if (cache_.count(key(r, c2, l))) {
-                    level = l;
-                    break;
-                }
+            const int level = needed_level(r, c2, camera.eye, c_rottger);
             visible_keys_.emplace_back(r, c2);
             picks_.push_back({r, c2, level, k == Containment::AllInside});
             window_level_[std::size_t(cell(r, c2))] = level;
-            ++stats.per_level[std::size_t(level)];
         }
+    // Neighbours differ by at most one level, as nodes do inside a tile with
+    // Röttger's d2 propagation: a finer tile's seam follows its coarser
+    // neighbour's vertices (lod/RottgerQuadtree.h), so a larger difference
+    // would coarsen the finer tile along the whole seam.
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (Pick& p : picks_) {
+            int& level = window_level_[std::size_t(cell(p.row, p.col))];
+            for (const auto& [dr, dc] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
+                const std::ptrdiff_t i = cell(p.row + dr, p.col + dc);
+                const int nl = i < 0 ? -1 : window_level_[std::size_t(i)];
+                if (nl >= 0 && level > nl + 1) {
+                    level = nl + 1;
+                    changed = true;
+                }
+            }
+            p.level = level;
+        }
+    }
+    for (Pick& p : picks_) {
+        // A finer level already in the cache serves as well, without I/O.
+        for (int l = p.level; l >= 0; --l)
+            if (cache_.count(key(p.row, p.col, l))) {
+                p.level = l;
+                break;
+            }
+        window_level_[std::size_t(cell(p.row, p.col))] = p.level;
+        ++stats.per_level[std::size_t(p.level)];
+    }
     stats.visible = int(picks_.size());
     stats.ms_select = ms_since(t0);
 
