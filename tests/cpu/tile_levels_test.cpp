@@ -2,14 +2,16 @@
 // "Reduced patches"): a reduced quadtree's d2 equals the full one's with the
 // stored d2 and never falls below it with the roughness bound, the level chosen before loading is one at which the full tile would
 // not have refined further, tiles at different levels stitch without cracks,
-// and a visible set larger than the memory bound streams within the frame to
-// the same mesh.
+// a visible set larger than the memory bound streams within the frame to
+// the same mesh, and reduced tiles keep Zamri's depth fidelity.
+#include "lod/QuadtreeAccuracy.h"
 #include "lod/TileSet.h"
 
 #include "core/DemoIsland.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <set>
 #include <tuple>
 
@@ -215,4 +217,35 @@ TEST(TileLevels, StreamsWithinTheFrameUnderTheBound) {
     const TileFrameStats s2 = set.build_mesh(cam, 1.0, m);
     EXPECT_GT(s2.streamed, 0);
     EXPECT_EQ(s2.triangles, all.triangles);
+}
+
+// Zamri's fidelity with reduced far tiles (2049^2 island, 1280x720, 1 px,
+// far 20 km): depth within 3 % of the full mesh on >= 95 % of terrain
+// pixels and the largest sample error near 1 px, as with full tiles, with
+// about the same triangles and less tile memory.
+TEST(TileLevels, AccuracyAgainstFullResolution) {
+    const Terrain t = island(2049);
+    TileGrid g = terrain_tile_grid(t, 257);
+    TileSet full_tiles(g, terrain_tile_loader(t, g), std::size_t(1) << 30);
+    add_tile_levels(t, g);
+    const TileLoader loader = loader_with_d2(t, g);
+    TileSet reduced(g, loader, std::size_t(1) << 30);
+    Camera cam = camera_at({t.width() / 2, t.max_height() + 150, -300}, 0, -12, 20000);
+    cam.width = 1280;
+    cam.height = 720;
+    MeshArrays m, mf;
+    const TileFrameStats s = reduced.build_mesh(cam, 1.0, m);
+    const TileFrameStats sf = full_tiles.build_mesh(cam, 1.0, mf);
+    const DepthImage ref = rasterize_depth(full_resolution_mesh(t), cam);
+    const DepthAgreement a = compare_depth(rasterize_depth(m, cam), ref, cam, 0.03);
+    const ScreenError e = screen_space_error(m, t, cam);
+    std::printf("reduced tiles: %zu triangles (full tiles %zu), cache %.1f MiB (full tiles %.1f), depth within 3%%: "
+                "%.2f %%, screen error max %.2f px\n",
+                s.triangles, sf.triangles, double(s.cache_bytes) / 1048576.0, double(sf.cache_bytes) / 1048576.0,
+                100 * a.share(), e.max_px);
+    EXPECT_GE(levels_used(s), 3);
+    EXPECT_GE(a.share(), 0.95);
+    EXPECT_LE(e.max_px, 1.25);
+    EXPECT_LT(double(s.cache_bytes), 0.8 * double(sf.cache_bytes));
+    EXPECT_GT(double(s.triangles), 0.9 * double(sf.triangles));
 }
