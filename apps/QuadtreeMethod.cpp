@@ -26,14 +26,18 @@ const TileFrameStats& QuadtreeMethod::build(const Camera& camera, double error_p
 
 std::string QuadtreeMethod::stats_json() const {
     const TileFrameStats& s = last_;
-    char buf[640];
+    std::string levels;
+    for (std::size_t l = 0; l < s.per_level.size(); ++l) levels += (l ? "," : "") + std::to_string(s.per_level[l]);
+    char buf[768];
     std::snprintf(buf, sizeof buf,
                   "{\"method\":\"quadtree\",\"triangles\":%zu,\"error_px\":%g,\"tiles_candidates\":%d,"
                   "\"tiles_visible\":%d,\"tiles_culled\":%d,\"tiles_loaded\":%d,\"tiles_cached\":%d,"
-                  "\"tiles_evicted\":%d,\"rings\":%d,\"cache_mib\":%.1f,"
+                  "\"tiles_evicted\":%d,\"tiles_streamed\":%d,\"tiles_per_level\":[%s],\"rings\":%d,"
+                  "\"cache_mib\":%.1f,\"bound_mib\":%.1f,"
                   "\"ms\":{\"select\":%.3f,\"load\":%.3f,\"refine\":%.3f,\"fans\":%.3f,\"total\":%.3f}}",
-                  s.triangles, error_px_, s.candidates, s.visible, s.culled, s.loaded, s.cached, s.evicted, s.rings,
-                  double(s.cache_bytes) / (1024.0 * 1024.0), s.ms_select, s.ms_load, s.ms_refine, s.ms_fans,
+                  s.triangles, error_px_, s.candidates, s.visible, s.culled, s.loaded, s.cached, s.evicted, s.streamed,
+                  levels.c_str(), s.rings, double(s.cache_bytes) / (1024.0 * 1024.0),
+                  double(tiles_->memory_bound()) / (1024.0 * 1024.0), s.ms_select, s.ms_load, s.ms_refine, s.ms_fans,
                   s.ms_select + s.ms_load + s.ms_refine + s.ms_fans);
     return buf;
 }

@@ -30,7 +30,8 @@ public:
     const TileFrameStats& build(const Camera& camera, double error_px, MeshArrays& out);
 
     // {"method":"quadtree","triangles":..,"tiles_visible":..,"tiles_culled":..,
-    //  "tiles_loaded":..,"tiles_cached":..,"cache_mib":..,"error_px":..,
+    //  "tiles_loaded":..,"tiles_cached":..,"tiles_evicted":..,"tiles_streamed":..,
+    //  "tiles_per_level":[visible tiles at level 0, 1, ..],"cache_mib":..,"bound_mib":..,"error_px":..,
     //  "ms":{"select":..,"load":..,"refine":..,"fans":..,"total":..}}
     std::string stats_json() const;
 

@@ -34,6 +34,7 @@ void RenderSettings::validate() const {
     if (triangles < 2 || triangles > kRoamMaxTriangles)
         throw Error("--triangles", std::to_string(triangles) + " is outside 2.." + std::to_string(kRoamMaxTriangles));
     if (!(error_px >= 0.01 && error_px <= 1000.0)) throw Error("--error", "must be in 0.01..1000 pixels");
+    if (cache_mib < 1 || cache_mib > (1 << 24)) throw Error("--cache-mib", "must be in 1..16777216 MiB");
 }
 
 void add_render_settings(CLI::App& cmd, RenderSettings& s) {
@@ -55,6 +56,10 @@ void add_render_settings(CLI::App& cmd, RenderSettings& s) {
         ->capture_default_str();
     cmd.add_option("--triangles", s.triangles, "roam: triangle budget per frame")->capture_default_str();
     cmd.add_option("--error", s.error_px, "quadtree: screen-space error target in pixels")->capture_default_str();
+    cmd.add_option("--cache-mib", s.cache_mib,
+                   "quadtree: memory bound of the tile cache in MiB (far tiles load reduced; a view that needs more "
+                   "streams its tiles within the frame)")
+        ->capture_default_str();
 }
 
 RenderSession::RenderSession(const DataSet& data, const RenderSettings& settings, std::string tile_dir)
@@ -199,7 +204,9 @@ private:
 class QuadtreeRenderer : public ViewRenderer {
 public:
     explicit QuadtreeRenderer(RenderSession& s)
-        : session_(s), quadtree_(s.tile_dir().empty() ? QuadtreeMethod(s.data()) : QuadtreeMethod(s.tile_dir())) {
+        : session_(s), quadtree_(s.tile_dir().empty()
+                                     ? QuadtreeMethod(s.data(), 257, std::size_t(s.settings().cache_mib) << 20)
+                                     : QuadtreeMethod(s.tile_dir(), std::size_t(s.settings().cache_mib) << 20)) {
         session_.gl();
     }
     void render(const Camera& camera, ColorImage& color, DepthImage& depth, nlohmann::json& stats) override {

@@ -43,10 +43,11 @@ struct RenderSettings {
     double near_step = RaycastOptions{}.near_step_pixels; // --near-step (voxel)
     int triangles = 65536;             // --triangles (roam)
     double error_px = 1.0;             // --error (quadtree)
+    int cache_mib = 1024;              // --cache-mib (quadtree): memory bound of loaded tiles
     std::string scene;                 // --scene FILE
 
     RaycastOptions raycast() const; // throws Error("--surface" | "--tilt-method" | "--near-step", ...)
-    // Throws Error("--triangles" | "--error", ...) for values outside their range.
+    // Throws Error("--triangles" | "--error" | "--cache-mib", ...) for values outside their range.
     void validate() const;
 };
 void add_render_settings(CLI::App& cmd, RenderSettings& settings);

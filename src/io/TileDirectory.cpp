@@ -27,10 +27,10 @@ namespace overflight {
 
 namespace {
 
-enum class TileFile { Heights, Colors, Apron };
+enum class TileFile { Heights, Colors, Apron, D2 };
 
 std::string tile_name(int r, int c, TileFile f) {
-    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif"};
+    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif", "_d2.tif"};
     return "r" + std::to_string(r) + "_c" + std::to_string(c) + suffix[int(f)];
 }
 
@@ -40,6 +40,8 @@ std::string tile_path(const std::string& dir, int r, int c, TileFile f) {
 
 const char* const kOverviewHeights = "overview.tif";
 const char* const kOverviewColors = "overview_rgb.tif";
+// Röttger's C the stored d2 is computed for: TileSet's default.
+const double kD2MinResolution = 4.0;
 
 std::array<double, 6> tile_geotransform(const TileIndex& ix, int r, int c) {
     std::array<double, 6> gt = ix.geotransform;
@@ -52,7 +54,13 @@ std::array<double, 6> tile_geotransform(const TileIndex& ix, int r, int c) {
 json index_to_json(const TileIndex& ix) {
     const TileGrid& g = ix.grid;
     json exists = json::array(), lo = json::array(), hi = json::array();
+    json roughness = g.roughness.empty() ? json(nullptr) : json::array();
     for (int r = 0; r < g.tile_rows; ++r) {
+        if (!g.roughness.empty()) {
+            json rr = json::array();
+            for (int c = 0; c < g.tile_cols; ++c) rr.push_back(g.roughness[g.index(r, c)]);
+            roughness.push_back(rr);
+        }
         json er = json::array(), lr = json::array(), hr = json::array();
         for (int c = 0; c < g.tile_cols; ++c) {
             er.push_back(int(g.exists[g.index(r, c)]));
@@ -83,6 +91,9 @@ json index_to_json(const TileIndex& ix) {
                 {"geotransform", ix.geotransform},
                 {"crs", ix.crs_wkt},
                 {"apron", ix.apron},
+                {"levels", ix.levels},
+                {"roughness", roughness},
+                {"d2_min_resolution", g.d2_min_resolution},
                 {"overview", ix.overview_stride > 1 ? json{{"stride", ix.overview_stride},
                                                             {"rows", ix.overview_rows},
                                                             {"cols", ix.overview_cols},
@@ -112,13 +123,49 @@ struct RasterSpec {
     std::string wkt;
     const TileGrid* height_mapping = nullptr;
     bool rgb = false;
+    int levels = 0; // GeoTIFF overviews holding every 2^m-th sample, m = 1 .. levels
 };
+
+// Writes every 2^m-th sample of each band into the overviews of `ds`
+// (m = 1 .. levels). GDAL's own resampling is not used: even NEAREST picks
+// samples by its own rounding of the size ratio, and a tile's reduced levels
+// must keep exactly the samples at multiples of 2^m, so that the edge
+// samples neighbouring tiles share stay identical (averaging would open
+// cracks). "NONE" only allocates the overviews.
+void write_levels(GDALDatasetH ds, const std::string& path, const RasterSpec& spec) {
+    std::vector<int> factors;
+    for (int m = 1; m <= spec.levels; ++m) factors.push_back(1 << m);
+    if (GDALBuildOverviews(ds, "NONE", int(factors.size()), factors.data(), 0, nullptr, nullptr, nullptr) != CE_None)
+        throw Error(path, "cannot create the reduced levels: " + gdal::last_error("overviews"));
+    const int bytes = GDALGetDataTypeSizeBytes(spec.type);
+    const std::size_t plane = std::size_t(spec.cols) * std::size_t(spec.rows) * std::size_t(bytes);
+    for (int b = 0; b < spec.bands; ++b) {
+        GDALRasterBandH band = GDALGetRasterBand(ds, b + 1);
+        const auto* src = static_cast<const unsigned char*>(spec.data) + std::size_t(b) * plane;
+        for (const int f : factors) {
+            const int cols = (spec.cols - 1) / f + 1, rows = (spec.rows - 1) / f + 1;
+            GDALRasterBandH ov = nullptr;
+            for (int o = 0; o < GDALGetOverviewCount(band) && !ov; ++o) {
+                GDALRasterBandH cand = GDALGetOverview(band, o);
+                if (GDALGetRasterBandXSize(cand) == cols && GDALGetRasterBandYSize(cand) == rows) ov = cand;
+            }
+            if (!ov) throw Error(path, "GDAL did not create a " + std::to_string(cols) + "x" + std::to_string(rows) + " level");
+            std::vector<unsigned char> dec(std::size_t(cols) * std::size_t(rows) * std::size_t(bytes));
+            for (int i = 0; i < rows; ++i)
+                for (int j = 0; j < cols; ++j)
+                    std::copy_n(src + (std::size_t(i) * f * std::size_t(spec.cols) + std::size_t(j) * f) * bytes, bytes,
+                                dec.data() + (std::size_t(i) * std::size_t(cols) + std::size_t(j)) * bytes);
+            if (GDALRasterIO(ov, GF_Write, 0, 0, cols, rows, dec.data(), cols, rows, spec.type, 0, 0) != CE_None)
+                throw Error(path, "cannot write a reduced level: " + gdal::last_error("I/O error"));
+        }
+    }
+}
 
 void write_raster(const std::string& path, const RasterSpec& spec) {
     GDALDriverH gtiff = GDALGetDriverByName("GTiff");
     char** co = nullptr;
     co = CSLSetNameValue(co, "COMPRESS", "DEFLATE");
-    co = CSLSetNameValue(co, "PREDICTOR", "2");
+    co = CSLSetNameValue(co, "PREDICTOR", spec.type == GDT_Float32 ? "3" : "2");
     struct OptionsFree {
         char** p;
         ~OptionsFree() { CSLDestroy(p); }
@@ -148,6 +195,7 @@ void write_raster(const std::string& path, const RasterSpec& spec) {
                 CE_None)
                 throw Error(path, "cannot write: " + gdal::last_error("I/O error"));
         }
+        if (spec.levels > 0) write_levels(ds.get(), path, spec);
         // Closing flushes the file: a failure there (disk full) must not pass.
         CPLErrorReset();
         GDALClose(ds.release());
@@ -176,13 +224,25 @@ void write_tile_files(const std::string& dir, const TileIndex& ix, int r, int c,
     const auto gt = tile_geotransform(ix, r, c);
     const std::vector<std::uint8_t> rgb = color_planes(t.samples);
     write_raster(tile_path(dir, r, c, TileFile::Colors),
-                 {n, n, 3, GDT_Byte, rgb.data(), &gt, ix.crs_wkt, nullptr, true});
+                 {n, n, 3, GDT_Byte, rgb.data(), &gt, ix.crs_wkt, nullptr, true, ix.levels});
     std::vector<std::uint16_t> sides;
     for (const auto* side : {&apron.north, &apron.south, &apron.west, &apron.east})
         sides.insert(sides.end(), side->begin(), side->end());
     write_raster(tile_path(dir, r, c, TileFile::Apron), {n, 4, 1, GDT_UInt16, sides.data(), nullptr, "", nullptr, false});
+    if (ix.levels > 0) {
+        // The full tile's d2 at its even samples (the centres of all nodes a
+        // level >= 1 keeps), with levels of every 2^m-th of them: level m of
+        // the tile reads level m - 1 of this file.
+        const std::vector<float> d2 = rottger_d2(t.samples, ix.grid.d2_min_resolution);
+        const int h = (n - 1) / 2 + 1;
+        std::vector<float> even(std::size_t(h) * std::size_t(h));
+        for (int i = 0; i < h; ++i)
+            for (int j = 0; j < h; ++j) even[std::size_t(i) * std::size_t(h) + std::size_t(j)] = d2[t.samples.index(2 * i, 2 * j)];
+        write_raster(tile_path(dir, r, c, TileFile::D2),
+                     {h, h, 1, GDT_Float32, even.data(), nullptr, "", nullptr, false, ix.levels - 1});
+    }
     write_raster(tile_path(dir, r, c, TileFile::Heights),
-                 {n, n, 1, GDT_UInt16, t.samples.heights().data(), &gt, ix.crs_wkt, &ix.grid, false});
+                 {n, n, 1, GDT_UInt16, t.samples.heights().data(), &gt, ix.crs_wkt, &ix.grid, false, ix.levels});
 }
 
 // Every f-th sample of `t` (clamped to its last row and column, with the
@@ -216,24 +276,38 @@ void write_overview(const std::string& dir, const TileIndex& ix, const Terrain& 
                  {o.cols(), o.rows(), 1, GDT_UInt16, o.heights().data(), &gt, ix.crs_wkt, &ix.grid, false});
 }
 
-// Reads `bands` planes of cols x rows samples of `type` from `path` into `out`.
-void read_raster(const std::string& path, int cols, int rows, int bands, GDALDataType type, void* out) {
+// Reads `bands` planes of cols x rows samples of `type` from `path` into
+// `out`; with reduce > 1, from the overview of the full raster written by
+// write_levels() that holds every reduce-th sample (cols x rows is its size).
+void read_raster(const std::string& path, int cols, int rows, int bands, GDALDataType type, void* out, int reduce = 1) {
     gdal::Dataset ds = gdal::open_raster(path);
-    if (GDALGetRasterXSize(ds.get()) != cols || GDALGetRasterYSize(ds.get()) != rows ||
+    const int full_cols = (cols - 1) * reduce + 1, full_rows = (rows - 1) * reduce + 1;
+    if (GDALGetRasterXSize(ds.get()) != full_cols || GDALGetRasterYSize(ds.get()) != full_rows ||
         GDALGetRasterCount(ds.get()) != bands)
-        throw Error(path, "expected " + std::to_string(bands) + " band(s) of " + std::to_string(cols) + "x" +
-                              std::to_string(rows) + " samples");
+        throw Error(path, "expected " + std::to_string(bands) + " band(s) of " + std::to_string(full_cols) + "x" +
+                              std::to_string(full_rows) + " samples");
     const std::size_t plane = std::size_t(cols) * std::size_t(rows) * std::size_t(GDALGetDataTypeSizeBytes(type));
-    for (int b = 0; b < bands; ++b)
-        if (GDALRasterIO(GDALGetRasterBand(ds.get(), b + 1), GF_Read, 0, 0, cols, rows,
-                         static_cast<unsigned char*>(out) + std::size_t(b) * plane, cols, rows, type, 0, 0) != CE_None)
+    for (int b = 0; b < bands; ++b) {
+        GDALRasterBandH band = GDALGetRasterBand(ds.get(), b + 1);
+        if (reduce > 1) {
+            GDALRasterBandH level = nullptr;
+            for (int o = 0; o < GDALGetOverviewCount(band) && !level; ++o) {
+                GDALRasterBandH cand = GDALGetOverview(band, o);
+                if (GDALGetRasterBandXSize(cand) == cols && GDALGetRasterBandYSize(cand) == rows) level = cand;
+            }
+            if (!level) throw Error(path, "has no level of every " + std::to_string(reduce) + "th sample; run `overflight tile` again");
+            band = level;
+        }
+        if (GDALRasterIO(band, GF_Read, 0, 0, cols, rows, static_cast<unsigned char*>(out) + std::size_t(b) * plane, cols,
+                         rows, type, 0, 0) != CE_None)
             throw Error(path, "cannot read: " + gdal::last_error("I/O error"));
+    }
 }
 
-void read_colors(const std::string& path, Terrain& t) {
+void read_colors(const std::string& path, Terrain& t, int reduce = 1) {
     const std::size_t n = t.colors().size();
     std::vector<std::uint8_t> planes(3 * n);
-    read_raster(path, t.cols(), t.rows(), 3, GDT_Byte, planes.data());
+    read_raster(path, t.cols(), t.rows(), 3, GDT_Byte, planes.data(), reduce);
     for (std::size_t i = 0; i < n; ++i) t.colors()[i] = Rgb8{planes[i], planes[n + i], planes[2 * n + i]};
 }
 
@@ -268,6 +342,8 @@ TileIndex parse_index(const std::string& path, bool require_complete) {
         ix.crs_wkt = j.at("crs").get<std::string>();
         // Written by later versions of the tiler; absent means none.
         ix.apron = j.value("apron", false);
+        ix.levels = j.value("levels", 0);
+        g.d2_min_resolution = j.value("d2_min_resolution", 0.0);
         if (j.contains("overview") && !j.at("overview").is_null()) {
             const auto& o = j.at("overview");
             ix.overview_stride = o.at("stride").get<int>();
@@ -290,11 +366,27 @@ TileIndex parse_index(const std::string& path, bool require_complete) {
                 g.max_height.push_back(hi[std::size_t(r)][std::size_t(c)].get<float>());
             }
         }
+        // Roughness is written with the finished index; without it (older
+        // directories, an unfinished run) tiles load at full resolution.
+        if (ix.levels > 0 && j.contains("roughness") && !j.at("roughness").is_null()) {
+            const auto& ro = j.at("roughness");
+            if (int(ro.size()) != g.tile_rows) throw Error(path, "roughness does not match tile_rows x tile_cols");
+            for (int r = 0; r < g.tile_rows; ++r) {
+                if (int(ro[std::size_t(r)].size()) != g.tile_cols)
+                    throw Error(path, "roughness does not match tile_rows x tile_cols");
+                for (int c = 0; c < g.tile_cols; ++c)
+                    g.roughness.push_back(ro[std::size_t(r)][std::size_t(c)].get<std::vector<float>>());
+            }
+            g.max_level = ix.levels;
+        }
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
         throw Error(path, std::string("malformed index: ") + e.what());
     }
+    if (ix.levels < 0 || ix.levels > 30) throw Error(path, "levels out of range");
+    if (ix.grid.d2_min_resolution != 0 && !(ix.grid.d2_min_resolution > 1))
+        throw Error(path, "d2_min_resolution must be 0 or greater than 1");
     ix.grid.validate(path);
     if (ix.padded_size != ix.grid.padded_rows() || ix.padded_size != ix.grid.padded_cols())
         throw Error(path, "source and padded sizes do not match the tile grid");
@@ -356,6 +448,8 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
         ix.geotransform = {-0.5 * hs, hs, 0, 0.5 * hs, 0, -hs};
     }
     ix.apron = true;
+    ix.levels = ix.grid.coarsest_level();
+    ix.grid.d2_min_resolution = ix.levels > 0 ? kD2MinResolution : 0.0;
     const int f = overview_stride(t.rows(), t.cols(), options.overview_max_side);
     if (f > 1) {
         ix.overview_stride = f;
@@ -381,7 +475,8 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
             const TileIndex old = parse_index(index_path, false);
             resume = old.checksum == ix.checksum && old.grid.tile_size == ix.grid.tile_size &&
                      old.geotransform == ix.geotransform && old.crs_wkt == ix.crs_wkt && old.apron &&
-                     old.overview_stride == ix.overview_stride;
+                     old.overview_stride == ix.overview_stride && old.levels == ix.levels &&
+                     old.grid.d2_min_resolution == ix.grid.d2_min_resolution;
         } catch (const Error&) {
             resume = false;
         }
@@ -397,28 +492,35 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
         write_overview(dir, ix, t);
     }
 
+    std::vector<std::vector<float>> roughness(ix.grid.exists.size());
     const int total = ix.grid.tile_rows * ix.grid.tile_cols;
     const bool progress = options.terminal_progress && ::isatty(2);
     int done = 0;
     for (int r = 0; r < ix.grid.tile_rows; ++r)
         for (int c = 0; c < ix.grid.tile_cols; ++c) {
             const std::string paths[] = {tile_path(dir, r, c, TileFile::Heights), tile_path(dir, r, c, TileFile::Colors),
-                                         tile_path(dir, r, c, TileFile::Apron)};
+                                         tile_path(dir, r, c, TileFile::Apron), tile_path(dir, r, c, TileFile::D2)};
             if (!ix.grid.present(r, c)) {
                 ++report.empty;
                 for (const auto& p : paths) fs::remove(p, ec); // left over from an earlier tiling of another source
-            } else if (resume && std::all_of(std::begin(paths), std::end(paths), [](const std::string& p) {
-                           return fs::exists(p);
-                       })) {
-                ++report.skipped;
             } else {
-                write_tile_files(dir, ix, r, c, cut_tile(t, ix.grid, r, c, false), cut_apron(t, ix.grid, r, c));
-                ++report.written;
+                const TileSamples tile = cut_tile(t, ix.grid, r, c, false);
+                roughness[ix.grid.index(r, c)] = rottger_roughness(tile.samples);
+                if (resume && std::all_of(std::begin(paths), std::end(paths), [&](const std::string& p) {
+                        return fs::exists(p) || (ix.levels == 0 && p == paths[3]);
+                    })) {
+                    ++report.skipped;
+                } else {
+                    write_tile_files(dir, ix, r, c, tile, cut_apron(t, ix.grid, r, c));
+                    ++report.written;
+                }
             }
             ++done;
             if (progress) GDALTermProgress(double(done) / total, nullptr, nullptr);
             if (options.on_tile && !options.on_tile(done, total)) throw Error(dir, "interrupted");
         }
+    ix.grid.roughness = std::move(roughness);
+    ix.grid.max_level = ix.levels;
     ix.complete = true;
     write_index(dir, ix);
     return report;
@@ -433,14 +535,20 @@ TileIndex read_tile_index(const std::string& dir) {
     return parse_index((fs::path(dir) / "index.json").string(), true);
 }
 
-TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c, bool with_normals) {
-    const int n = ix.grid.tile_size;
-    TileSamples t{Terrain(n, n, ix.grid.h_scale, ix.grid.v_scale, ix.grid.y_offset), {}};
+TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c, bool with_normals, int level) {
     const std::string h_path = tile_path(dir, r, c, TileFile::Heights);
+    if (level < 0 || level > ix.levels)
+        throw Error(h_path, "level " + std::to_string(level) + " not stored (" + std::to_string(ix.levels) + " levels)");
+    const int n = ix.grid.level_size(level), step = 1 << level;
+    TileSamples t{Terrain(n, n, ix.grid.h_scale * float(step), ix.grid.v_scale, ix.grid.y_offset), {}};
     if (!ix.grid.present(r, c)) throw Error(h_path, "tile is flagged 0 (no data) in index.json");
-    read_raster(h_path, n, n, 1, GDT_UInt16, t.samples.heights().data());
-    read_colors(tile_path(dir, r, c, TileFile::Colors), t.samples);
-    if (with_normals && ix.apron) {
+    read_raster(h_path, n, n, 1, GDT_UInt16, t.samples.heights().data(), step);
+    read_colors(tile_path(dir, r, c, TileFile::Colors), t.samples, step);
+    if (level > 0 && ix.grid.d2_min_resolution > 0) {
+        t.d2.resize(std::size_t(n) * std::size_t(n));
+        read_raster(tile_path(dir, r, c, TileFile::D2), n, n, 1, GDT_Float32, t.d2.data(), step / 2);
+    }
+    if (with_normals && ix.apron && level == 0) {
         std::vector<std::uint16_t> sides(4 * std::size_t(n));
         read_raster(tile_path(dir, r, c, TileFile::Apron), n, 4, 1, GDT_UInt16, sides.data());
         TileApron a;
@@ -455,7 +563,7 @@ TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c,
 }
 
 TileLoader tile_directory_loader(const std::string& dir, const TileIndex& index) {
-    return [dir, index](int r, int c) { return read_tile(dir, index, r, c); };
+    return [dir, index](int r, int c, int level) { return read_tile(dir, index, r, c, true, level); };
 }
 
 namespace {

@@ -20,15 +20,32 @@
 //                        (FNV-1a 64 of the source samples, colors and
 //                        mapping), apron (true: every tile has an apron
 //                        file), overview (null or its stride and size),
-//                        complete (false while tiling runs).
+//                        levels (L: reduced levels in each tile file, 0 in
+//                        older directories), roughness (per tile the
+//                        lod/RottgerQuadtree.h rottger_roughness() of its
+//                        samples, [] for tiles flagged 0; null until the
+//                        run completes), d2_min_resolution (Röttger's C of
+//                        the _d2 files, 0 without them), complete (false
+//                        while tiling runs).
+//                        Without levels and roughness, tiles are read at full
+//                        resolution only.
 //   r{R}_c{C}.tif        heights: 1 band UInt16, tile_size^2, DEFLATE,
 //                        SetScale(v_scale)/SetOffset(y_offset) so GIS tools
 //                        read metres, the source CRS and a geotransform on the
 //                        source grid (tile origin = source origin + (C*(s-1),
-//                        R*(s-1)) pixels).
-//   r{R}_c{C}_rgb.tif    colors: 3 bands Byte (red, green, blue), same grid.
+//                        R*(s-1)) pixels). GeoTIFF overviews m = 1 .. L
+//                        hold every 2^m-th sample exactly (not resampled),
+//                        ((s-1)/2^m+1)^2: far tiles are read reduced
+//                        (lod/TileSet.h "Levels").
+//   r{R}_c{C}_rgb.tif    colors: 3 bands Byte (red, green, blue), same grid
+//                        and overviews.
 //                        A separate file because GeoTIFF bands share one data
 //                        type: RGB as UInt16 bands would double its size.
+//   r{R}_c{C}_d2.tif     with levels: Float32, ((s-1)/2+1)^2, the full tile's
+//                        propagated d2 (lod/RottgerQuadtree.h rottger_d2)
+//                        at its even samples, with overviews of every
+//                        2^m-th: a tile read at level m takes level m - 1 of
+//                        it, so its quadtree has the full tile's d2.
 //   r{R}_c{C}_apron.tif  the raw samples just outside the tile (lod/TileSet.h
 //                        TileApron): 4 rows of tile_size UInt16 (north, south,
 //                        west, east), so that the loader computes normals at
@@ -63,6 +80,7 @@ struct TileIndex {
     std::string checksum;
     bool complete = false;
     bool apron = false;       // r{R}_c{C}_apron.tif files exist (older directories: no)
+    int levels = 0;           // reduced levels in each tile file (older directories: 0)
     int overview_stride = 0;  // 0: no overview files
     int overview_rows = 0, overview_cols = 0;
     std::string source; // what was tiled (path or "demo")
@@ -104,12 +122,16 @@ bool is_tile_directory(const std::string& path);
 // malformed, inconsistent or incomplete.
 TileIndex read_tile_index(const std::string& dir);
 
-// Reads tile (r, c): heights in raw units with the index's mapping, colors,
-// and with the apron files (index.apron) normals equal to the whole
-// terrain's (lod/TileSet.h tile_normals); without them, normals are left
-// empty (TileSet computes one-sided ones). with_normals = false skips the
-// apron. Throws Error(tile path, ...) when missing or of the wrong size.
-TileSamples read_tile(const std::string& dir, const TileIndex& index, int r, int c, bool with_normals = true);
+// Reads tile (r, c) at `level` (every 2^level-th sample, 0 .. index.levels):
+// heights in raw units with the index's mapping, colors, above level 0 the
+// full tile's d2 at each sample (when the directory has _d2 files), and at level 0
+// with the apron files (index.apron) normals equal to the whole terrain's
+// (lod/TileSet.h tile_normals); otherwise normals are left empty (TileSet
+// computes one-sided ones: a reduced tile is far away, where the lighting
+// seam is a fraction of a pixel). with_normals = false skips the apron.
+// Throws Error(tile path, ...) when missing or of the wrong size.
+TileSamples read_tile(const std::string& dir, const TileIndex& index, int r, int c, bool with_normals = true,
+                      int level = 0);
 
 // A loader for TileSet that reads tiles from `dir`.
 TileLoader tile_directory_loader(const std::string& dir, const TileIndex& index);

@@ -55,6 +55,25 @@
 // (set_neighbour), so tiles agree on the seam: the seam vertices are the
 // finer side's, as the coarser side includes them. Tiles share their edge
 // samples (overlapping 2^k+1 tiles), so both sides use identical positions.
+//
+// Reduced patches: a far tile may be loaded with only every `step`-th sample
+// (step = 2^m; TileSet picks m where Röttger's f stops subdivision above node
+// size 2^m anyway). Such a patch is a quadtree over the decimated samples
+// whose finest nodes are the full tree's nodes of half-size `step`: their
+// check points are samples the decimated patch keeps, so their own d2 is
+// exact, but the d2 their full-resolution children would have propagated up
+// is lost. The full tree's d2 at the finest nodes (`finest_d2`, stored by the
+// tiler from rottger_d2()) restores it exactly: every node then has the full
+// tree's d2. Without it, `finer_d2` (a bound on the children's propagated
+// d2, from rottger_roughness()) keeps d2 >= the full tree's at every node, at
+// the cost of more triangles. Either way the reduced patch never stops
+// where the full one would refine.
+// Across a seam with a coarser patch, the finer one can only share vertices
+// the coarser one has: set_seam_ratio() keeps the finer patch's nodes along
+// that edge from being subdivided into nodes smaller than the coarser
+// patch's finest ones, so its edge vertices lie on the coarser grid and the
+// recursive edge rule above stitches both sides (Röttger's one-level rule
+// carried across patches of different sample spacing).
 #include "core/MeshArrays.h"
 #include "core/Terrain.h"
 #include "lod/Frustum.h"
@@ -71,6 +90,19 @@ namespace overflight {
 // focal length of focal_px pixels (see above): fp / (tau * C).
 double rottger_c(double error_px, double focal_px, double min_resolution);
 
+// Roughness of a (2^k+1)^2 patch per node size: entry j (0 .. k-1) is the
+// largest d2 before propagation (max |dh| / d at the six check points) over
+// the nodes of half-size 2^j. Stored per tile by the tiler, so that a tile's
+// level of detail can be chosen before it is loaded.
+std::vector<float> rottger_roughness(const Terrain& patch);
+// Upper bound on the propagated d2 of any node of half-size 2^j given the
+// roughness above: e_0 = r_0, e_j = max(r_j, K e_(j-1)), K = C / (2 (C - 1))
+// (Röttger sec. 3.3 applied to the per-level maxima).
+double propagated_d2_bound(const std::vector<float>& roughness, int j, double min_resolution);
+// The propagated d2 of every node of a (2^k+1)^2 patch, at its centre sample
+// (0 where no node is centred): Röttger's quadtree matrix for min_resolution C.
+std::vector<float> rottger_d2(const Terrain& patch, double min_resolution);
+
 class RottgerQuadtree {
 public:
     enum Side { North, South, West, East }; // row - 1, row + 1, col - 1, col + 1
@@ -80,15 +112,23 @@ public:
     // (origin_row, origin_col) is the global sample index of the patch's
     // sample (0, 0), so that world X = hs * (origin_col + j) is identical in
     // every patch that shares a sample. min_resolution is Röttger's C (> 1).
+    // A reduced patch holds every `step`-th sample (a power of two; its
+    // h_scale is step times the full grid's, origins stay in full-grid
+    // indices) and `finer_d2` bounds the propagated d2 of the full tree's
+    // nodes of half-size step / 2 (see above; 0 for a full patch), unless
+    // `finest_d2` gives the full tree's d2 at each sample of the reduced
+    // patch (only read while constructing).
     // Throws Error("quadtree", ...) for a patch that is not (2^k+1)^2 or
     // normals of the wrong size. Both are referenced, not copied: they must
     // outlive the quadtree.
     RottgerQuadtree(const Terrain& samples, const std::vector<glm::vec3>& normals, int origin_row, int origin_col,
-                    double min_resolution = 4.0);
+                    double min_resolution = 4.0, int step = 1, double finer_d2 = 0.0,
+                    const std::vector<float>* finest_d2 = nullptr);
 
     int size() const { return n_; }
     int origin_row() const { return origin_row_; }
     int origin_col() const { return origin_col_; }
+    int step() const { return step_; }
     double min_resolution() const { return C_; }
     // Propagated d2 of the node centred at (row, col) (0 where no node is centred).
     float d2(int row, int col) const { return d2_[idx(row, col)]; }
@@ -101,6 +141,9 @@ public:
     // the terrain border). Must be set before append_fans(); neighbours must have been
     // refine()d for the same frame.
     void set_neighbour(Side side, const RottgerQuadtree* q) { neighbours_[side] = q; }
+    // The patch across `side` keeps every ratio-th of this patch's samples
+    // (1: as fine or finer). Set before refine(); see "Reduced patches".
+    void set_seam_ratio(Side side, int ratio) { seam_ratio_[side] = ratio; }
 
     // Top-down evaluation of f from the root (Röttger sec. 3.2) for an eye
     // in world coordinates; starts a new frame. With a frustum, a node whose
@@ -121,16 +164,25 @@ public:
 
     // Bytes held by the quadtree matrix and its per-frame buffers.
     std::size_t memory_bytes() const;
+    // Bytes of the matrix alone for an n x n patch (an estimate before building one).
+    static std::size_t matrix_bytes(int n);
 
 private:
     std::size_t idx(int row, int col) const { return std::size_t(row) * std::size_t(n_) + std::size_t(col); }
     float world_y(int row, int col) const { return terrain_->sample_height(row, col); }
-    void compute_d2();
+    friend std::vector<float> rottger_d2(const Terrain& patch, double min_resolution);
+    static void build_matrix(const Terrain& t, double C, const std::vector<float>* finest, double finer_d2,
+                             std::vector<float>& d2, std::vector<std::uint16_t>& lo, std::vector<std::uint16_t>& hi);
     void refine_node(int ci, int cj, int h, bool inside);
     void emit_leaves(int ci, int cj, int h);
+    struct NodeRef {
+        const RottgerQuadtree* patch;
+        int ci, cj, h;
+    };
+    NodeRef locate(int ci, int cj, int h) const;
     bool has_patch(int ci, int cj) const;
     bool node_reached(int ci, int cj, int h) const;
-    bool node_subdivided(int ci, int cj) const;
+    bool node_subdivided(int ci, int cj, int h) const;
     void collect_edge(int ci, int cj, int h, Side towards, bool same_size, std::vector<std::array<int, 2>>& out) const;
     std::uint32_t vertex(int row, int col);
 
@@ -138,7 +190,10 @@ private:
     const std::vector<glm::vec3>* normals_;
     int n_ = 0;
     int origin_row_ = 0, origin_col_ = 0;
+    int step_ = 1;
+    double hs_full_ = 1.0; // h_scale of the full grid: world X = hs_full_ * (origin_col_ + step_ * col)
     double C_ = 4.0;
+    std::array<int, 4> seam_ratio_{1, 1, 1, 1};
     std::vector<float> d2_;
     std::vector<std::uint16_t> lo_, hi_; // per node: raw height range of its samples
     std::vector<std::uint32_t> stamp_;     // == frame_: subdivided this frame

@@ -6,6 +6,9 @@
 #include "core/Error.h"
 #include "lod/Frustum.h"
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -33,6 +36,17 @@ void TileGrid::validate(const std::string& subject) const {
         throw Error(subject, "tile grid needs one existence flag and one height range per tile");
     if (!(h_scale > 0) || !std::isfinite(h_scale) || !std::isfinite(v_scale) || !std::isfinite(y_offset))
         throw Error(subject, "tile grid scales must be finite, the horizontal one positive");
+    if (max_level < 0 || max_level > coarsest_level() || (max_level > 0 && roughness.size() != n))
+        throw Error(subject, "tile levels need 0 .. " + std::to_string(coarsest_level()) + " levels and one roughness per tile");
+    for (std::size_t i = 0; i < roughness.size(); ++i)
+        if (exists[i] && roughness[i].size() != std::size_t(coarsest_level() + 1))
+            throw Error(subject, "tile roughness needs one value per node size");
+}
+
+int TileGrid::coarsest_level() const {
+    int k = 0;
+    while ((1 << (k + 1)) <= stride()) ++k;
+    return k - 1;
 }
 
 TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
@@ -74,14 +88,15 @@ TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
     return g;
 }
 
-TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col, bool with_normals) {
-    const int n = grid.tile_size, s = grid.stride();
-    TileSamples t{Terrain(n, n, grid.h_scale, grid.v_scale, grid.y_offset), {}};
+TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col, bool with_normals,
+                     int level) {
+    const int n = grid.level_size(level), s = grid.stride(), step = 1 << level;
+    TileSamples t{Terrain(n, n, grid.h_scale * float(step), grid.v_scale, grid.y_offset), {}};
     if (with_normals) t.normals.resize(std::size_t(n) * std::size_t(n));
     for (int i = 0; i < n; ++i) {
-        const int gi = tile_row * s + i, si = std::min(gi, terrain.rows() - 1);
+        const int gi = tile_row * s + i * step, si = std::min(gi, terrain.rows() - 1);
         for (int j = 0; j < n; ++j) {
-            const int gj = tile_col * s + j, sj = std::min(gj, terrain.cols() - 1);
+            const int gj = tile_col * s + j * step, sj = std::min(gj, terrain.cols() - 1);
             t.samples.raw(i, j) = terrain.raw(si, sj);
             Rgb8 col = terrain.color(si, sj);
             // Same darkening as pad_to_pow2_plus1: padding reads as "no data".
@@ -144,11 +159,22 @@ std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron,
 }
 
 TileLoader terrain_tile_loader(const Terrain& terrain, const TileGrid& grid) {
-    return [&terrain, grid_copy = grid](int r, int c) { return cut_tile(terrain, grid_copy, r, c, true); };
+    return [&terrain, grid_copy = grid](int r, int c, int level) {
+        return cut_tile(terrain, grid_copy, r, c, true, level);
+    };
+}
+
+void add_tile_levels(const Terrain& terrain, TileGrid& grid) {
+    grid.roughness.assign(grid.exists.size(), {});
+    for (int r = 0; r < grid.tile_rows; ++r)
+        for (int c = 0; c < grid.tile_cols; ++c)
+            if (grid.present(r, c))
+                grid.roughness[grid.index(r, c)] = rottger_roughness(cut_tile(terrain, grid, r, c, false).samples);
+    grid.max_level = grid.coarsest_level();
 }
 
 struct TileSet::Tile {
-    int row = 0, col = 0;
+    int row = 0, col = 0, level = 0;
     TileSamples data;
     std::unique_ptr<RottgerQuadtree> quadtree;
     std::list<std::uint64_t>::iterator lru;
@@ -164,8 +190,36 @@ TileSet::TileSet(TileGrid grid, TileLoader loader, std::size_t memory_bound, dou
 
 TileSet::~TileSet() = default;
 
-TileSet::Tile& TileSet::acquire(int r, int c, TileFrameStats& stats) {
-    const std::uint64_t k = key(r, c);
+bool TileSet::is_cached(int r, int c) const {
+    for (int l = 0; l <= grid_.coarsest_level(); ++l)
+        if (cache_.count(key(r, c, l))) return true;
+    return false;
+}
+
+int TileSet::needed_level(int r, int c, const glm::dvec3& eye, double c_rottger) const {
+    const std::size_t gi = grid_.index(r, c);
+    if (grid_.max_level == 0 || grid_.roughness[gi].empty()) return 0;
+    // l >= distance from the eye to the tile's box for every node centre in it.
+    const double tw = grid_.tile_world_size();
+    const glm::dvec3 lo(c * tw, grid_.min_height[gi], r * tw), hi((c + 1) * tw, grid_.max_height[gi], (r + 1) * tw);
+    const double l = glm::length(glm::max(glm::max(lo - eye, eye - hi), glm::dvec3(0.0)));
+    for (int m = grid_.max_level; m >= 1; --m) {
+        // Nodes of half-size 2^m are never subdivided: f >= 1 for all of them
+        // (d = their edge, d2 bounded by the roughness), so samples 2^m apart suffice.
+        const double d = double(2 << m) * grid_.h_scale;
+        if (l >= d * C_ * std::max(c_rottger * propagated_d2_bound(grid_.roughness[gi], m, C_), 1.0)) return m;
+    }
+    return 0;
+}
+
+std::size_t TileSet::estimated_bytes(int level) const {
+    const int n = grid_.level_size(level);
+    return sizeof(Tile) + std::size_t(n) * std::size_t(n) * (sizeof(std::uint16_t) + sizeof(Rgb8) + sizeof(glm::vec3)) +
+           RottgerQuadtree::matrix_bytes(n);
+}
+
+TileSet::Tile& TileSet::acquire(const Pick& p, int done_row, TileFrameStats& stats) {
+    const std::uint64_t k = key(p.row, p.col, p.level);
     auto it = cache_.find(k);
     if (it != cache_.end()) {
         Tile& t = *it->second;
@@ -173,22 +227,32 @@ TileSet::Tile& TileSet::acquire(int r, int c, TileFrameStats& stats) {
         t.used_frame = frame_;
         return t;
     }
+    make_room(estimated_bytes(p.level), done_row, stats);
     auto tile = std::make_unique<Tile>();
-    tile->row = r;
-    tile->col = c;
-    tile->data = loader_(r, c);
+    tile->row = p.row;
+    tile->col = p.col;
+    tile->level = p.level;
+    tile->data = loader_(p.row, p.col, p.level);
     const Terrain& s = tile->data.samples;
-    if (s.rows() != grid_.tile_size || s.cols() != grid_.tile_size)
-        throw Error("tile " + std::to_string(r) + "," + std::to_string(c),
+    const int n = grid_.level_size(p.level);
+    if (s.rows() != n || s.cols() != n)
+        throw Error("tile " + std::to_string(p.row) + "," + std::to_string(p.col),
                     "loader returned " + std::to_string(s.rows()) + "x" + std::to_string(s.cols()) + " samples, expected " +
-                        std::to_string(grid_.tile_size));
+                        std::to_string(n) + " at level " + std::to_string(p.level));
     if (tile->data.normals.empty()) {
         tile->data.normals.resize(s.heights().size());
         for (int i = 0; i < s.rows(); ++i)
             for (int j = 0; j < s.cols(); ++j) tile->data.normals[s.index(i, j)] = s.sample_normal(i, j);
     }
-    tile->quadtree = std::make_unique<RottgerQuadtree>(tile->data.samples, tile->data.normals, r * grid_.stride(),
-                                                       c * grid_.stride(), C_);
+    // A reduced tile takes the full tile's d2 when the loader has it for our
+    // C, else the bound from the roughness (lod/RottgerQuadtree.h).
+    const bool exact = p.level > 0 && grid_.d2_min_resolution == C_ && tile->data.d2.size() == s.heights().size();
+    const double finer_d2 =
+        p.level > 0 && !exact ? propagated_d2_bound(grid_.roughness[grid_.index(p.row, p.col)], p.level - 1, C_) : 0.0;
+    tile->quadtree = std::make_unique<RottgerQuadtree>(tile->data.samples, tile->data.normals, p.row * grid_.stride(),
+                                                       p.col * grid_.stride(), C_, 1 << p.level, finer_d2,
+                                                       exact ? &tile->data.d2 : nullptr);
+    tile->data.d2 = {}; // only needed to build the matrix
     tile->bytes = sizeof(Tile) + s.heights().size() * (sizeof(std::uint16_t) + sizeof(Rgb8) + sizeof(glm::vec3)) +
                   tile->quadtree->memory_bytes();
     tile->used_frame = frame_;
@@ -199,6 +263,27 @@ TileSet::Tile& TileSet::acquire(int r, int c, TileFrameStats& stats) {
     Tile& ref = *tile;
     cache_.emplace(k, std::move(tile));
     return ref;
+}
+
+void TileSet::make_room(std::size_t bytes, int done_row, TileFrameStats& stats) {
+    // Least recently used first: tiles of earlier frames, then this frame's
+    // tiles in the (row-major) order they were drawn, as long as their rows
+    // are done (no fan of a later row asks them about the seam any more).
+    while (bytes_ + bytes > bound_ && !lru_.empty()) {
+        const std::uint64_t k = lru_.back();
+        auto it = cache_.find(k);
+        Tile& t = *it->second;
+        if (t.used_frame == frame_) {
+            if (t.row > done_row) break;
+            window_[std::size_t(t.row - win_r0_) * std::size_t(win_w_) + std::size_t(t.col - win_c0_)] = nullptr;
+            ++stats.streamed;
+        } else {
+            ++stats.evicted;
+        }
+        bytes_ -= t.bytes;
+        lru_.pop_back();
+        cache_.erase(it);
+    }
 }
 
 void TileSet::evict(TileFrameStats& stats) {
@@ -219,6 +304,8 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
     out.clear();
     ++frame_;
     TileFrameStats stats;
+    stats.per_level.assign(std::size_t(grid_.coarsest_level() + 1), 0);
+    const double c_rottger = rottger_c(error_px, camera.focal_px(), C_);
     auto t0 = Clock::now();
 
     // The viewer's tile, then rings until `far` is covered: a tile in ring r
@@ -229,64 +316,119 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
     const int max_ring = std::max(grid_.tile_rows, grid_.tile_cols) + std::max(std::abs(tr0), std::abs(tc0));
     const int R = std::clamp(int(std::ceil(camera.far / tw)) + 1, 1, max_ring);
     stats.rings = R;
-    const int W = 2 * R + 1;
-    window_.assign(std::size_t(W) * std::size_t(W), nullptr);
+    win_r0_ = tr0 - R;
+    win_c0_ = tc0 - R;
+    win_w_ = 2 * R + 1;
+    const std::size_t cells = std::size_t(win_w_) * std::size_t(win_w_);
+    window_.assign(cells, nullptr);
+    window_level_.assign(cells, -1);
+    auto cell = [&](int r, int c2) -> std::ptrdiff_t {
+        const int wr = r - win_r0_, wc = c2 - win_c0_;
+        if (wr < 0 || wc < 0 || wr >= win_w_ || wc >= win_w_) return -1;
+        return std::ptrdiff_t(wr) * win_w_ + wc;
+    };
     const Frustum frustum = Frustum::from_camera(camera);
     visible_keys_.clear();
-    inside_.clear();
+    picks_.clear();
     for (int r = std::max(tr0 - R, 0); r <= std::min(tr0 + R, grid_.tile_rows - 1); ++r)
-        for (int c = std::max(tc0 - R, 0); c <= std::min(tc0 + R, grid_.tile_cols - 1); ++c) {
-            if (!grid_.present(r, c)) continue;
+        for (int c2 = std::max(tc0 - R, 0); c2 <= std::min(tc0 + R, grid_.tile_cols - 1); ++c2) {
+            if (!grid_.present(r, c2)) continue;
             ++stats.candidates;
             // Bounding sphere of the tile's box (X, Z extent; Y range from the index).
-            const std::size_t gi = grid_.index(r, c);
+            const std::size_t gi = grid_.index(r, c2);
             const double y0 = grid_.min_height[gi], y1 = grid_.max_height[gi];
-            const glm::dvec3 centre((c + 0.5) * tw, 0.5 * (y0 + y1), (r + 0.5) * tw);
+            const glm::dvec3 centre((c2 + 0.5) * tw, 0.5 * (y0 + y1), (r + 0.5) * tw);
             const double radius = std::sqrt(0.5 * tw * tw + 0.25 * (y1 - y0) * (y1 - y0));
             const Containment k = frustum.classify(centre, radius);
             if (k == Containment::AllOutside) {
                 ++stats.culled;
                 continue;
             }
-            visible_keys_.emplace_back(r, c);
-            inside_.push_back(k == Containment::AllInside);
+            const int level = needed_level(r, c2, camera.eye, c_rottger);
+            visible_keys_.emplace_back(r, c2);
+            picks_.push_back({r, c2, level, k == Containment::AllInside});
+            window_level_[std::size_t(cell(r, c2))] = level;
         }
-    stats.visible = int(visible_keys_.size());
+    // Neighbours differ by at most one level, as nodes do inside a tile with
+    // Röttger's d2 propagation: a finer tile's seam follows its coarser
+    // neighbour's vertices (lod/RottgerQuadtree.h), so a larger difference
+    // would coarsen the finer tile along the whole seam.
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (Pick& p : picks_) {
+            int& level = window_level_[std::size_t(cell(p.row, p.col))];
+            for (const auto& [dr, dc] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
+                const std::ptrdiff_t i = cell(p.row + dr, p.col + dc);
+                const int nl = i < 0 ? -1 : window_level_[std::size_t(i)];
+                if (nl >= 0 && level > nl + 1) {
+                    level = nl + 1;
+                    changed = true;
+                }
+            }
+            p.level = level;
+        }
+    }
+    for (Pick& p : picks_) {
+        // A finer level already in the cache serves as well, without I/O.
+        for (int l = p.level; l >= 0; --l)
+            if (cache_.count(key(p.row, p.col, l))) {
+                p.level = l;
+                break;
+            }
+        window_level_[std::size_t(cell(p.row, p.col))] = p.level;
+        ++stats.per_level[std::size_t(p.level)];
+    }
+    stats.visible = int(picks_.size());
     stats.ms_select = ms_since(t0);
 
-    t0 = Clock::now();
-    visible_.clear();
-    for (const auto& [r, c] : visible_keys_) {
-        Tile& t = acquire(r, c, stats);
-        visible_.push_back(&t);
-        window_[std::size_t(r - (tr0 - R)) * std::size_t(W) + std::size_t(c - (tc0 - R))] = &t;
-    }
-    evict(stats);
-    stats.ms_load = ms_since(t0);
-
-    // Seams: each quadtree asks its drawn edge neighbours (RottgerQuadtree).
-    auto at = [&](int r, int c) -> const RottgerQuadtree* {
-        const int wr = r - (tr0 - R), wc = c - (tc0 - R);
-        if (wr < 0 || wc < 0 || wr >= W || wc >= W) return nullptr;
-        const Tile* t = window_[std::size_t(wr) * std::size_t(W) + std::size_t(wc)];
+    // Row by row: a row's fans ask its neighbours about the seams, so the
+    // rows above and below must be loaded and refined; once a row is drawn,
+    // the row above it is done and may be evicted if the bound requires it.
+    auto at = [&](int r, int c2) -> const RottgerQuadtree* {
+        const std::ptrdiff_t i = cell(r, c2);
+        const Tile* t = i < 0 ? nullptr : window_[std::size_t(i)];
         return t ? t->quadtree.get() : nullptr;
     };
-    t0 = Clock::now();
-    const double c = rottger_c(error_px, camera.focal_px(), C_);
-    for (std::size_t k = 0; k < visible_.size(); ++k) {
-        Tile* t = visible_[k];
-        t->quadtree->set_neighbour(RottgerQuadtree::North, at(t->row - 1, t->col));
-        t->quadtree->set_neighbour(RottgerQuadtree::South, at(t->row + 1, t->col));
-        t->quadtree->set_neighbour(RottgerQuadtree::West, at(t->row, t->col - 1));
-        t->quadtree->set_neighbour(RottgerQuadtree::East, at(t->row, t->col + 1));
-        // A tile wholly inside needs no per-node frustum tests.
-        t->quadtree->refine(camera.eye, c, inside_[k] ? nullptr : &frustum);
+    auto seam_ratio = [&](int level, int r, int c2) {
+        const std::ptrdiff_t i = cell(r, c2);
+        const int nl = i < 0 ? -1 : window_level_[std::size_t(i)];
+        return nl > level ? 1 << (nl - level) : 1;
+    };
+    std::size_t next = 0;
+    auto load_through = [&](int row, int done_row) {
+        for (; next < picks_.size() && picks_[next].row <= row; ++next) {
+            const Pick& p = picks_[next];
+            auto t1 = Clock::now();
+            Tile& t = acquire(p, done_row, stats);
+            window_[std::size_t(cell(p.row, p.col))] = &t;
+            stats.ms_load += ms_since(t1);
+            t1 = Clock::now();
+            RottgerQuadtree& q = *t.quadtree;
+            q.set_seam_ratio(RottgerQuadtree::North, seam_ratio(p.level, p.row - 1, p.col));
+            q.set_seam_ratio(RottgerQuadtree::South, seam_ratio(p.level, p.row + 1, p.col));
+            q.set_seam_ratio(RottgerQuadtree::West, seam_ratio(p.level, p.row, p.col - 1));
+            q.set_seam_ratio(RottgerQuadtree::East, seam_ratio(p.level, p.row, p.col + 1));
+            // A tile wholly inside needs no per-node frustum tests.
+            q.refine(camera.eye, c_rottger, p.inside ? nullptr : &frustum);
+            stats.ms_refine += ms_since(t1);
+        }
+    };
+    for (std::size_t k = 0; k < picks_.size();) {
+        const int row = picks_[k].row;
+        load_through(row + 1, row - 2);
+        const auto t1 = Clock::now();
+        for (; k < picks_.size() && picks_[k].row == row; ++k) {
+            const Pick& p = picks_[k];
+            RottgerQuadtree& q = *window_[std::size_t(cell(p.row, p.col))]->quadtree;
+            q.set_neighbour(RottgerQuadtree::North, at(p.row - 1, p.col));
+            q.set_neighbour(RottgerQuadtree::South, at(p.row + 1, p.col));
+            q.set_neighbour(RottgerQuadtree::West, at(p.row, p.col - 1));
+            q.set_neighbour(RottgerQuadtree::East, at(p.row, p.col + 1));
+            stats.triangles += q.append_fans(out);
+        }
+        stats.ms_fans += ms_since(t1);
     }
-    stats.ms_refine = ms_since(t0);
-
-    t0 = Clock::now();
-    for (Tile* t : visible_) stats.triangles += t->quadtree->append_fans(out);
-    stats.ms_fans = ms_since(t0);
+    evict(stats);
 
     stats.cached = int(cache_.size());
     stats.cache_bytes = bytes_;

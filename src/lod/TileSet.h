@@ -14,6 +14,19 @@
 //
 // lod does no I/O: tiles come from an injected TileLoader (a tile directory
 // through io, or a Terrain already in memory through terrain_tile_loader()).
+//
+// Levels: a far tile needs only coarse data. Röttger's f = l / (d C max(c
+// d2, 1)) stops subdividing large nodes far away, so when no node of
+// half-size 2^m of a tile can be subdivided at the tile's distance (checked
+// before loading, with the tile's per-level roughness from the index), the
+// tile is loaded at level m: every 2^m-th sample, 4^m times less memory.
+// The cache is keyed by (tile, level); a reduced quadtree gets the full
+// tile's d2 from the loader (or a conservative bound without it), so it
+// refines as the full tile would, and stitches to neighbours of other levels
+// (lod/RottgerQuadtree.h).
+// If even the visible tiles at their levels exceed the memory bound, the
+// frame is built row by row of tiles and drawn tiles are evicted once their
+// neighbours' fans are done (streamed within the frame).
 #include "core/Camera.h"
 #include "core/MeshArrays.h"
 #include "core/Terrain.h"
@@ -41,6 +54,13 @@ struct TileGrid {
     std::vector<std::uint8_t> exists; // Zamri's flags, row-major tile_rows x tile_cols
     std::vector<float> min_height;    // world Y range per tile, for the bounding
     std::vector<float> max_height;    // spheres of tiles not loaded yet
+    // Levels the loader can deliver (0: full resolution only), and per tile
+    // rottger_roughness() of its full samples (empty when levels are unknown).
+    int max_level = 0;
+    std::vector<std::vector<float>> roughness;
+    // Röttger's C for which the loader gives reduced tiles the full tile's
+    // d2 (TileSamples::d2); 0: it does not, a bound from the roughness is used.
+    double d2_min_resolution = 0.0;
 
     int stride() const { return tile_size - 1; }
     std::size_t index(int r, int c) const { return std::size_t(r) * std::size_t(tile_cols) + std::size_t(c); }
@@ -50,19 +70,26 @@ struct TileGrid {
     double tile_world_size() const { return double(h_scale) * stride(); }
     int padded_rows() const { return tile_rows * stride() + 1; }
     int padded_cols() const { return tile_cols * stride() + 1; }
+    // Samples per side of a tile at `level` (every 2^level-th sample).
+    int level_size(int level) const { return (stride() >> level) + 1; }
+    // The coarsest level a tile can drop to (a 3x3 patch).
+    int coarsest_level() const;
     // Throws Error(subject, ...) when sizes or vectors are inconsistent.
     void validate(const std::string& subject) const;
 };
 
-// What a loader returns for one tile: tile_size^2 samples (heights, colors,
-// the grid's scales) and optionally one normal per sample (empty: computed
-// from the tile's own samples, one-sided on its border, which shows a
-// lighting seam where tiles meet).
+// What a loader returns for one tile at a level: level_size(level)^2 samples
+// (every 2^level-th sample of the tile: heights, colors, the grid's vertical
+// scales, h_scale times 2^level) and optionally one normal per sample
+// (empty: computed from the tile's own samples, one-sided on its border,
+// which shows a lighting seam where tiles meet), and for a reduced level
+// optionally the full tile's rottger_d2() at each sample (empty: bounded).
 struct TileSamples {
     Terrain samples;
     std::vector<glm::vec3> normals;
+    std::vector<float> d2;
 };
-using TileLoader = std::function<TileSamples(int tile_row, int tile_col)>;
+using TileLoader = std::function<TileSamples(int tile_row, int tile_col, int level)>;
 
 // The raw samples just outside tile (r, c), s = tile_size, S = s - 1:
 // `north` is global row r*S - 1 and `south` row r*S + s, both over the
@@ -95,8 +122,13 @@ TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size);
 // Loader that cuts tiles out of `terrain` (which must outlive it); normals
 // come from Terrain::sample_normal of the whole terrain, so they agree at seams.
 TileLoader terrain_tile_loader(const Terrain& terrain, const TileGrid& grid);
-// The padded samples of one tile (what the loader above returns), exposed for the tiler.
-TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col, bool with_normals);
+// The padded samples of one tile at `level` (what the loader above returns),
+// exposed for the tiler.
+TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col, bool with_normals,
+                     int level = 0);
+// Fills grid.roughness from the tiles of `terrain` and sets max_level, so
+// that a TileSet over terrain_tile_loader() loads far tiles reduced.
+void add_tile_levels(const Terrain& terrain, TileGrid& grid);
 
 struct TileFrameStats {
     int candidates = 0;   // present tiles in the rings around the viewer
@@ -105,6 +137,8 @@ struct TileFrameStats {
     int loaded = 0;       // loaded this frame (cache misses)
     int cached = 0;       // tiles in the cache after the frame
     int evicted = 0;      // dropped this frame to respect the memory bound
+    int streamed = 0;     // drawn this frame, then dropped before its end (bound < visible set)
+    std::vector<int> per_level; // visible tiles drawn at level 0, 1, ...
     int rings = 0;        // rings around the viewer's tile (1 = Zamri's 3x3)
     std::size_t cache_bytes = 0;
     std::size_t triangles = 0;
@@ -114,14 +148,15 @@ struct TileFrameStats {
 class TileSet {
 public:
     // memory_bound: bytes of loaded tiles (samples, normals, quadtree) the
-    // cache may hold; tiles visible in the current frame are never evicted,
-    // so one frame may exceed it. min_resolution is Röttger's C.
+    // cache may hold; it is exceeded only when three rows of visible tiles
+    // at their levels do not fit. min_resolution is Röttger's C.
     TileSet(TileGrid grid, TileLoader loader, std::size_t memory_bound, double min_resolution = 4.0);
     ~TileSet();
     TileSet(const TileSet&) = delete;
     TileSet& operator=(const TileSet&) = delete;
 
     const TileGrid& grid() const { return grid_; }
+    std::size_t memory_bound() const { return bound_; }
 
     // One frame: select the tiles around the camera, cull them against its
     // frustum, load the missing ones, refine each visible tile's quadtree
@@ -132,12 +167,23 @@ public:
 
     // The visible tiles of the last frame, as (row, col).
     const std::vector<std::pair<int, int>>& visible_tiles() const { return visible_keys_; }
-    bool is_cached(int r, int c) const { return cache_.count(key(r, c)) != 0; }
+    // Whether tile (r, c) is cached at any level.
+    bool is_cached(int r, int c) const;
+
+    // The coarsest level at which tile (r, c) yields the quadtree the full
+    // tile would for an eye at `eye` and Röttger's c (0 without roughness).
+    int needed_level(int r, int c, const glm::dvec3& eye, double c_rottger) const;
 
 private:
     struct Tile;
-    std::uint64_t key(int r, int c) const { return std::uint64_t(grid_.index(r, c)); }
-    Tile& acquire(int r, int c, TileFrameStats& stats);
+    struct Pick {
+        int row, col, level;
+        bool inside; // ALL-INSIDE the frustum
+    };
+    std::uint64_t key(int r, int c, int level) const { return std::uint64_t(grid_.index(r, c)) * 32u + std::uint64_t(level); }
+    std::size_t estimated_bytes(int level) const;
+    Tile& acquire(const Pick& p, int done_row, TileFrameStats& stats);
+    void make_room(std::size_t bytes, int done_row, TileFrameStats& stats);
     void evict(TileFrameStats& stats);
 
     TileGrid grid_;
@@ -150,9 +196,10 @@ private:
     std::unordered_map<std::uint64_t, std::unique_ptr<Tile>> cache_;
     // Per-frame scratch, reused.
     std::vector<std::pair<int, int>> visible_keys_;
-    std::vector<bool> inside_; // per visible tile: ALL-INSIDE the frustum
-    std::vector<Tile*> visible_;
-    std::vector<Tile*> window_; // (2R+1)^2 window around the viewer's tile
+    std::vector<Pick> picks_;   // visible tiles, row-major, with their levels
+    std::vector<Tile*> window_; // (2R+1)^2 window around the viewer's tile (loaded this frame)
+    std::vector<int> window_level_; // level of each visible tile in the window, -1 elsewhere
+    int win_r0_ = 0, win_c0_ = 0, win_w_ = 0; // the window's first tile row, column and width
 };
 
 } // namespace overflight

@@ -98,7 +98,7 @@ TEST(TileSet, CulledTilesAreNeitherLoadedNorDrawn) {
     const TileGrid g = terrain_tile_grid(t, 17); // 8x8 tiles of 16 units
     std::set<std::pair<int, int>> loads;
     auto base = terrain_tile_loader(t, g);
-    TileSet set(g, [&](int r, int c) { loads.insert({r, c}); return base(r, c); }, std::size_t(1) << 30);
+    TileSet set(g, [&](int r, int c, int level) { loads.insert({r, c}); return base(r, c, level); }, std::size_t(1) << 30);
     // In tile (4, 4), looking south (+Z) with far = 20: rings = ceil(20/16)+1 = 3.
     const Camera cam = camera_at({72, 140, 72}, 0, -10, 20);
     MeshArrays m;
@@ -129,7 +129,7 @@ TEST(TileSet, LruRespectsMemoryBound) {
     Camera cam = camera_at({16, 200, 16}, 45, -20, 120);
     const TileFrameStats first = probe.build_mesh(cam, 1.0, m);
     const std::size_t bound = first.cache_bytes + first.cache_bytes / 4;
-    TileSet set(g, [&](int r, int c) { ++loads; return base(r, c); }, bound);
+    TileSet set(g, [&](int r, int c, int level) { ++loads; return base(r, c, level); }, bound);
     // Fly diagonally across the terrain: old tiles must be evicted.
     int evicted = 0;
     for (int k = 0; k < 8; ++k) {

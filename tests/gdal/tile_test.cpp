@@ -1,8 +1,8 @@
 // `overflight tile`: overlapping tiles reassemble exactly to the padded
 // source, existence flags, georeferencing on real DEMs, an interrupted
 // tiling (and a killed tiler) that re-runs to the same result, tile-edge
-// normals equal to the whole terrain's, and the overview that stands in for
-// a terrain larger than memory.
+// normals equal to the whole terrain's, the overview that stands in for
+// a terrain larger than memory, and reduced levels that keep exact samples.
 #include "TestSupport.h"
 
 #include "core/DemoIsland.h"
@@ -13,6 +13,7 @@
 #include "lod/TileSet.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -143,7 +144,7 @@ TEST(Tile, InterruptedRunResumesToTheSameResult) {
     int files2 = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path)) ++files2;
     EXPECT_EQ(files, files2);
-    EXPECT_EQ(files, 49); // 16 heights + 16 colors + 16 aprons + index.json
+    EXPECT_EQ(files, 65); // 16 heights + 16 colors + 16 aprons + 16 d2 + index.json
 
     // A different source does not resume: everything is rewritten.
     DataSet other = d;
@@ -214,7 +215,8 @@ TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
         for (const auto& e : fs::directory_iterator(dir, ec)) {
             const std::string name = e.path().filename().string();
             n += name[0] == 'r' && name.size() > 4 && name.compare(name.size() - 4, 4, ".tif") == 0 &&
-                 name.find("_rgb") == std::string::npos && name.find("_apron") == std::string::npos;
+                 name.find("_rgb") == std::string::npos && name.find("_apron") == std::string::npos &&
+                 name.find("_d2") == std::string::npos;
         }
         return n;
     };
@@ -264,7 +266,7 @@ TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
         ++files;
         EXPECT_EQ(bytes_of(e.path()), bytes_of(fs::path(ref) / e.path().filename())) << e.path().filename();
     }
-    EXPECT_EQ(files, 3 * 1024 + 1);
+    EXPECT_EQ(files, 4 * 1024 + 1);
     EXPECT_EQ(read_tile_index(dir).checksum, read_tile_index(ref).checksum);
 }
 
@@ -451,4 +453,61 @@ TEST(Tile, SrtmTilesCarryTheReprojectedGrid) {
                 }
         }
     EXPECT_GT(checked, 300);
+}
+
+// Each tile file holds levels of every 2^m-th sample, exactly the samples
+// (not resampled), so that reduced neighbours share their edge samples, and
+// the full tile's d2 at them; the index carries each tile's roughness. A directory of an older tiler
+// (no levels) still renders, at full resolution.
+TEST(Tile, ReducedLevelsKeepExactSamples) {
+    test::ScratchDir dir;
+    const DataSet d = small_island();
+    TileWriteOptions o;
+    o.tile_size = 33;
+    write_tile_directory(d, dir.path.string(), o);
+    const TileIndex ix = read_tile_index(dir.path.string());
+    ASSERT_EQ(ix.levels, 4); // 17, 9, 5, 3 samples
+    EXPECT_EQ(ix.grid.max_level, 4);
+    EXPECT_EQ(ix.grid.d2_min_resolution, 4.0);
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) {
+            const TileSamples full = read_tile(dir.path.string(), ix, r, c);
+            EXPECT_EQ(ix.grid.roughness[ix.grid.index(r, c)], rottger_roughness(full.samples));
+            const std::vector<float> d2 = rottger_d2(full.samples, 4.0);
+            for (int m = 1; m <= 4; ++m) {
+                const TileSamples red = read_tile(dir.path.string(), ix, r, c, true, m);
+                const int n = 32 / (1 << m) + 1;
+                ASSERT_EQ(red.samples.rows(), n);
+                EXPECT_EQ(red.samples.h_scale(), d.terrain.h_scale() * float(1 << m));
+                EXPECT_TRUE(red.normals.empty());
+                for (int i = 0; i < n; ++i)
+                    for (int j = 0; j < n; ++j) {
+                        ASSERT_EQ(red.samples.raw(i, j), full.samples.raw(i << m, j << m)) << r << "," << c << " level " << m;
+                        ASSERT_EQ(red.samples.color(i, j), full.samples.color(i << m, j << m));
+                        ASSERT_EQ(red.d2[red.samples.index(i, j)], d2[full.samples.index(i << m, j << m)]);
+                    }
+            }
+        }
+    EXPECT_THROW(read_tile(dir.path.string(), ix, 1, 1, true, 5), Error);
+
+    // An older tiler's index: no levels, no roughness.
+    const fs::path index = dir.path / "index.json";
+    nlohmann::json j = nlohmann::json::parse(bytes_of(index));
+    j.erase("levels");
+    j.erase("roughness");
+    j.erase("d2_min_resolution");
+    std::ofstream(index) << j.dump();
+    const TileIndex old = read_tile_index(dir.path.string());
+    EXPECT_EQ(old.levels, 0);
+    EXPECT_EQ(old.grid.max_level, 0);
+    TileSet set(old.grid, tile_directory_loader(dir.path.string(), old), std::size_t(1) << 30);
+    Camera cam;
+    cam.eye = {-3000, 2000, -3000};
+    cam.heading = 45;
+    cam.pitch = -20;
+    cam.far = 20000;
+    MeshArrays m;
+    const TileFrameStats s = set.build_mesh(cam, 1.0, m);
+    EXPECT_GT(s.visible, 0);
+    EXPECT_EQ(s.per_level[0], s.visible);
 }

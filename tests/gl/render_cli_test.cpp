@@ -162,12 +162,17 @@ TEST(RenderCli, EveryMethodWritesImageDepthAndStats) {
         }
         if (std::string(m) == "quadtree") {
             EXPECT_EQ(j["error_px"], 2.0);
-            for (const char* k : {"tiles_visible", "tiles_culled", "tiles_loaded"}) EXPECT_TRUE(j.contains(k)) << k;
+            for (const char* k : {"tiles_visible", "tiles_culled", "tiles_loaded", "tiles_streamed", "tiles_per_level",
+                                  "bound_mib"})
+                EXPECT_TRUE(j.contains(k)) << k;
         }
     }
     const RunResult bad = run_overflight("render demo --demo-size 65 -o '" + dir / "x.png" + "' --method roam --triangles 1");
     EXPECT_NE(bad.exit_code, 0);
     EXPECT_EQ(bad.err.rfind("overflight: --triangles:", 0), 0u) << bad.err;
+    const RunResult bad_bound =
+        run_overflight("render demo --demo-size 65 -o '" + dir / "x.png" + "' --method quadtree --cache-mib 0");
+    EXPECT_EQ(bad_bound.err.rfind("overflight: --cache-mib:", 0), 0u) << bad_bound.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
