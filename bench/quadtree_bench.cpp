@@ -18,41 +18,24 @@
 //   aerial -- `overflight bench`'s default for a terrain without a vehicle
 //             start: above the south edge at the highest point + 1/4 of the
 //             relief, looking north, pitch -12, far 2048 samples.
-#include "core/DemoIsland.h"
-#include "io/LoadTerrain.h"
+#include "BenchTerrains.h"
 #include "lod/QuadtreeAccuracy.h"
 #include "lod/TileSet.h"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <map>
 #include <string>
 
 using namespace overflight;
 
 namespace {
 
-const std::string kShared = (std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "shared" / "data").string();
-
 enum Which { Demo = 0, Rainier = 1 };
 enum View { Low = 0, Aerial = 1 };
 
 const Terrain& terrain(int which) {
-    static std::map<int, DataSet> cache;
-    auto it = cache.find(which);
-    if (it != cache.end()) return it->second.terrain;
-    DataSet ds;
-    const std::string srtm = kShared + "/srtm/mt_rainier_90m.tif";
-    if (which == Rainier && std::filesystem::exists(srtm)) {
-        ds = load_terrain(srtm);
-    } else {
-        DemoOptions o;
-        o.size = which == Demo ? 2049 : 1025;
-        ds = make_demo_island(o);
-    }
-    return cache.emplace(which, std::move(ds)).first->second.terrain;
+    return which == Rainier ? bench::rainier_or_demo(1025) : bench::demo_island(2049);
 }
 
 Camera view(int which, const Terrain& t, int v, int width, int height) {

@@ -5,14 +5,12 @@
 // second per core; `items_per_second` is that rate. The quality counters
 // (max / mean projected error in pixels, share of terrain pixels whose depth
 // is within 5 % of the full-resolution mesh) are per budget.
-#include "core/DemoIsland.h"
-#include "io/LoadTerrain.h"
+#include "BenchTerrains.h"
 #include "lod/QuadtreeAccuracy.h"
 #include "lod/RoamMesh.h"
 
 #include <benchmark/benchmark.h>
 
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -21,24 +19,8 @@ using namespace overflight;
 
 namespace {
 
-const std::string kShared = (std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "shared" / "data").string();
-
 // 0: Mt Rainier SRTM (or the 1025^2 island when the data is absent), 1: 4097^2 island.
-const Terrain& terrain(int which) {
-    static std::map<int, DataSet> cache;
-    auto it = cache.find(which);
-    if (it != cache.end()) return it->second.terrain;
-    DataSet ds;
-    const std::string srtm = kShared + "/srtm/mt_rainier_90m.tif";
-    if (which == 0 && std::filesystem::exists(srtm)) {
-        ds = load_terrain(srtm);
-    } else {
-        DemoOptions o;
-        o.size = which == 0 ? 1025 : 4097;
-        ds = make_demo_island(o);
-    }
-    return cache.emplace(which, std::move(ds)).first->second.terrain;
-}
+const Terrain& terrain(int which) { return which == 0 ? bench::rainier_or_demo(1025) : bench::demo_island(4097); }
 
 RoamMesh& roam(int which) {
     static std::map<int, std::unique_ptr<RoamMesh>> cache;

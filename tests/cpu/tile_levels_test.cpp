@@ -8,6 +8,7 @@
 #include "lod/TileSet.h"
 
 #include "core/DemoIsland.h"
+#include "TileSeams.h"
 
 #include <gtest/gtest.h>
 
@@ -36,32 +37,6 @@ Terrain island(int size) {
     DemoOptions o;
     o.size = size;
     return make_demo_island(o).terrain;
-}
-
-// Directed edges (XZ) of a triangle list whose reverse is missing, except
-// those on the outline of the drawn tiles (the terrain border, or a seam
-// towards a tile that is not drawn): cracks or T-junctions.
-int open_edges(const MeshArrays& m, const std::vector<std::pair<int, int>>& visible, float tw) {
-    const std::set<std::pair<int, int>> vis(visible.begin(), visible.end());
-    std::set<std::tuple<float, float, float, float>> directed;
-    for (std::size_t k = 0; k < m.indices.size(); k += 3)
-        for (int e = 0; e < 3; ++e) {
-            const glm::vec3 a = m.positions[m.indices[k + e]], b = m.positions[m.indices[k + (e + 1) % 3]];
-            directed.insert({a.x, a.z, b.x, b.z});
-        }
-    int open = 0;
-    for (const auto& [px, pz, qx, qz] : directed) {
-        if (directed.count({qx, qz, px, pz})) continue;
-        const float mx = 0.5f * (px + qx), mz = 0.5f * (pz + qz);
-        const int tr = int(mz / tw), tc = int(mx / tw);
-        bool outline = false;
-        if (px == qx && std::fmod(px, tw) == 0)
-            outline = !vis.count({tr, int(px / tw) - 1}) || !vis.count({tr, int(px / tw)});
-        if (pz == qz && std::fmod(pz, tw) == 0)
-            outline = !vis.count({int(pz / tw) - 1, tc}) || !vis.count({int(pz / tw), tc});
-        if (!outline) ++open;
-    }
-    return open;
 }
 
 // A loader that also gives reduced tiles the full tile's d2 (as a tile
@@ -187,7 +162,7 @@ TEST(TileLevels, NoCrackBetweenLevels) {
                 MeshArrays m;
                 const TileFrameStats s = set->build_mesh(camera_at(eye, heading, pitch, 40000), err, m);
                 EXPECT_GE(levels_used(s), 2) << "error " << err << " view " << heading;
-                EXPECT_EQ(open_edges(m, set->visible_tiles(), float(g.tile_world_size())), 0) << "error " << err;
+                EXPECT_EQ(test::open_edges(m, set->visible_tiles(), float(g.tile_world_size())), 0) << "error " << err;
             }
 }
 
@@ -212,7 +187,7 @@ TEST(TileLevels, StreamsWithinTheFrameUnderTheBound) {
     EXPECT_EQ(s.triangles, all.triangles);
     EXPECT_EQ(m.positions, ref.positions);
     EXPECT_EQ(m.indices, ref.indices);
-    EXPECT_EQ(open_edges(m, set.visible_tiles(), float(g.tile_world_size())), 0);
+    EXPECT_EQ(test::open_edges(m, set.visible_tiles(), float(g.tile_world_size())), 0);
     // The next frame streams again and gives the same mesh.
     const TileFrameStats s2 = set.build_mesh(cam, 1.0, m);
     EXPECT_GT(s2.streamed, 0);

@@ -6,6 +6,7 @@
 
 #include "core/DemoIsland.h"
 #include "core/Error.h"
+#include "TileSeams.h"
 
 #include <gtest/gtest.h>
 
@@ -167,30 +168,9 @@ TEST(TileSet, NoCrackAcrossTileSeams) {
             MeshArrays m;
             const TileFrameStats s = set.build_mesh(cam, err, m);
             ASSERT_GT(s.visible, 1);
-            // The mesh covers the visible tiles only; count open edges that
-            // are neither on the terrain border nor on the visible set's outline.
-            std::set<std::pair<int, int>> vis(set.visible_tiles().begin(), set.visible_tiles().end());
-            const float tw = float(g.tile_world_size());
-            std::set<std::tuple<float, float, float, float>> directed;
-            for (std::size_t k = 0; k < m.indices.size(); k += 3)
-                for (int e = 0; e < 3; ++e) {
-                    const glm::vec3 a = m.positions[m.indices[k + e]], b = m.positions[m.indices[k + (e + 1) % 3]];
-                    directed.insert({a.x, a.z, b.x, b.z});
-                }
-            int open = 0;
-            for (const auto& [px, pz, qx, qz] : directed) {
-                if (directed.count({qx, qz, px, pz})) continue;
-                // An edge on a seam towards a tile that is not drawn is an outline edge.
-                const float mx = 0.5f * (px + qx), mz = 0.5f * (pz + qz);
-                const int tr = int(mz / tw), tc = int(mx / tw);
-                bool outline = false;
-                if (px == qx && std::fmod(px, tw) == 0)
-                    outline = !vis.count({tr, int(px / tw) - 1}) || !vis.count({tr, int(px / tw)});
-                if (pz == qz && std::fmod(pz, tw) == 0)
-                    outline = !vis.count({int(pz / tw) - 1, tc}) || !vis.count({int(pz / tw), tc});
-                if (!outline) ++open;
-            }
-            EXPECT_EQ(open, 0) << "error " << err;
+            // The mesh covers the visible tiles only: open edges on the terrain
+            // border or on the visible set's outline are not cracks.
+            EXPECT_EQ(test::open_edges(m, set.visible_tiles(), float(g.tile_world_size())), 0) << "error " << err;
         }
     }
     // Everything visible from high above: the whole padded square is closed.
