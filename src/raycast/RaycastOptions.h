@@ -47,8 +47,10 @@ struct RaycastOptions {
 // What one frame cost, for --stats and `overflight bench`.
 struct RaycastStats {
     double ms_setup = 0;    // per-frame tables: slices, rows, columns, depth vector
-    double ms_cast = 0;     // floating horizon over all columns (shear: fused with the resolve, per block)
-    double ms_resolve = 0;  // tilt: sky, depth, reprojection to the image (shear: 0, inside ms_cast)
+    double ms_cast = 0;     // floating horizon over all columns
+    double ms_resolve = 0;  // fog, sky, depth (tilt: and reprojection) to the image
+    // Shear fuses both per block: the step's wall time is split in proportion
+    // to the thread time each took.
     double ms_total = 0;
     long long samples = 0;         // columns x slices up to far (the size of the problem)
     long long samples_visited = 0; // height samples actually read (clipping, early exit and skipped runs spare the rest)
