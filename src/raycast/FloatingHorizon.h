@@ -84,7 +84,9 @@ private:
     // samples visited.
     long long cast_columns(const RaycastOptions& options, int c0, int c1, std::uint32_t* color, std::uint32_t* slice,
                            int* jend, std::ptrdiff_t col_stride, std::ptrdiff_t row_stride) const;
-    template <std::ptrdiff_t kStride> // row stride of the output
+    // kStride: row stride of the output; kEvenRows: the rows are evenly
+    // spaced in slope (shear) and the output has kPaintRows rows of padding.
+    template <std::ptrdiff_t kStride, bool kEvenRows>
     int cast_blocks_column(int c, std::uint32_t* color, std::uint32_t* slice, long long& visited) const;
     template <bool kBilinear, bool kVarying>
     int cast_column(int c, std::uint32_t* color, std::uint32_t* slice, std::ptrdiff_t stride, long long& visited) const;
@@ -115,6 +117,7 @@ private:
     std::vector<double> col_ux_, col_uz_; // grid units per unit of d along the column
     std::vector<int> col_k0_, col_k1_; // slices inside the terrain
     int rows_cast_ = 0;
+    bool rows_even_ = false;           // row_m_ evenly spaced (shear): cast_blocks_column searches rows
     bool uniform_slices_ = true;       // one cell apart: incremental stepping
     bool skip_runs_ = true;            // RaycastOptions::skip_runs
     SkyTable sky_;
