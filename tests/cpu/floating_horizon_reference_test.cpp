@@ -19,6 +19,8 @@
 #include "raycast/RayMarcher.h"
 
 #include <glm/trigonometric.hpp>
+#include "TestCameras.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -60,25 +62,6 @@ Agreement compare(const Camera& cam, double h_scale, const DepthImage& fast, con
     a.depth = both ? double(depth_ok) / double(both) : 1.0;
     a.terrain_px = both;
     return a;
-}
-
-// An overview from a third of the way in, looking across the terrain.
-Camera overview(const Terrain& t, double heading, double pitch, Projection proj) {
-    Camera cam;
-    cam.heading = heading;
-    cam.pitch = pitch;
-    cam.projection = proj;
-    cam.width = 160;
-    cam.height = 100;
-    cam.fov = 60;
-    const double extent = std::max(t.width(), t.depth());
-    const glm::dvec3 F = cam.forward();
-    const double x = t.width() * 0.5 - 0.3 * extent * F.x, z = t.depth() * 0.5 - 0.3 * extent * F.z;
-    const double relief = std::max(1.0, double(t.max_height() - t.min_height()));
-    cam.eye = {x, t.height_bilinear(float(x), float(z)) + 0.15 * relief + 2.0 * t.h_scale(), z};
-    cam.near = 1.0;
-    cam.far = 1.2 * extent;
-    return cam;
 }
 
 // Agreement over all views of a sweep (views have equal size, so means of shares
@@ -133,7 +116,7 @@ Totals sweep(const DataSet& ds, Projection proj, const RaycastOptions& opt) {
     Totals tot;
     for (double heading = 0; heading < 360; heading += 45)
         for (double pitch : {-30.0, -12.0, 0.0, 15.0}) {
-            const Camera cam = overview(ds.terrain, heading, pitch, proj);
+            const Camera cam = test::across_terrain(ds.terrain, heading, pitch, proj);
             fh.render(cam, opt, cf, df);
             ref.render(cam, surface, cr, dr);
             tot.add(compare(cam, ds.terrain.h_scale(), df, dr));
@@ -230,7 +213,7 @@ TEST(FloatingHorizonVsLiteral, SameImageOnShearViews) {
     for (SurfaceModel surface : {SurfaceModel::Blocks, SurfaceModel::Bilinear})
         for (double heading = 0; heading < 360; heading += 45)
             for (double pitch : {-30.0, 0.0, 15.0}) {
-                const Camera cam = overview(ds.terrain, heading, pitch, Projection::Shear);
+                const Camera cam = test::across_terrain(ds.terrain, heading, pitch, Projection::Shear);
                 RaycastOptions opt;
                 opt.surface = surface;
                 fh.render(cam, opt, cf, df);
@@ -258,7 +241,7 @@ TEST(FloatingHorizonLod, StaysCloseToTheReference) {
     DepthImage df, dr;
     Totals tot;
     for (double heading = 0; heading < 360; heading += 45) {
-        const Camera cam = overview(ds.terrain, heading, -10, Projection::Shear);
+        const Camera cam = test::across_terrain(ds.terrain, heading, -10, Projection::Shear);
         fh.render(cam, opt, cf, df);
         ref.render(cam, SurfaceModel::Blocks, cr, dr);
         tot.add(compare(cam, ds.terrain.h_scale(), df, dr));

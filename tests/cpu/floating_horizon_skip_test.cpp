@@ -10,6 +10,8 @@
 #include "raycast/HeightPyramid.h"
 #include "raycast/SliceRunBound.h"
 
+#include "TestCameras.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,24 +31,6 @@ std::uint16_t nearest(const Terrain& t, std::int64_t gx, std::int64_t gz) {
     return t.raw(int(gz >> 32), int(gx >> 32));
 }
 
-// A view from a third of the way in, looking across the terrain (as in the reference test).
-Camera view(const Terrain& t, double heading, double pitch, Projection proj) {
-    Camera cam;
-    cam.heading = heading;
-    cam.pitch = pitch;
-    cam.projection = proj;
-    cam.width = 160;
-    cam.height = 100;
-    const double extent = std::max(t.width(), t.depth());
-    const glm::dvec3 F = cam.forward();
-    const double x = t.width() * 0.5 - 0.3 * extent * F.x, z = t.depth() * 0.5 - 0.3 * extent * F.z;
-    const double relief = std::max(1.0, double(t.max_height() - t.min_height()));
-    cam.eye = {x, t.height_bilinear(float(x), float(z)) + 0.15 * relief + 2.0 * t.h_scale(), z};
-    cam.near = 1.0;
-    cam.far = 1.2 * extent;
-    return cam;
-}
-
 // Renders a sweep of views with and without skipping; returns the number of
 // views compared. Every pixel's color and depth must be bit-identical.
 int expect_same_with_and_without_skipping(const DataSet& ds, Projection proj, SurfaceModel surface) {
@@ -60,7 +44,7 @@ int expect_same_with_and_without_skipping(const DataSet& ds, Projection proj, Su
     int views = 0;
     for (double heading = 0; heading < 360; heading += 45)
         for (double pitch : {-30.0, -12.0, 0.0, 15.0}) {
-            const Camera cam = view(ds.terrain, heading, pitch, proj);
+            const Camera cam = test::across_terrain(ds.terrain, heading, pitch, proj);
             fh.render(cam, skip, c1, d1, &s1);
             fh.render(cam, full, c2, d2, &s2);
             ++views;
@@ -164,7 +148,7 @@ TEST(FloatingHorizonRunSkipping, SameImageAsWithoutOnCraterLake) {
 TEST(FloatingHorizonRunSkipping, ReadsFewerSamples) {
     const DataSet ds = make_demo_island({257});
     FloatingHorizon fh(ds.terrain, ds.environment);
-    const Camera cam = view(ds.terrain, 0, -12, Projection::Shear);
+    const Camera cam = test::across_terrain(ds.terrain, 0, -12, Projection::Shear);
     RaycastOptions full;
     full.skip_runs = false;
     ColorImage c;

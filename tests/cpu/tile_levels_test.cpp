@@ -10,6 +10,8 @@
 #include "core/DemoIsland.h"
 #include "TileSeams.h"
 
+#include "TestCameras.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -19,19 +21,6 @@
 using namespace overflight;
 
 namespace {
-
-Camera camera_at(glm::dvec3 eye, double heading, double pitch, double far) {
-    Camera c;
-    c.eye = eye;
-    c.heading = heading;
-    c.pitch = pitch;
-    c.fov = 60;
-    c.width = 640;
-    c.height = 360;
-    c.near = 1;
-    c.far = far;
-    return c;
-}
 
 Terrain island(int size) {
     DemoOptions o;
@@ -122,7 +111,7 @@ TEST(TileLevels, ChosenLevelIsOneTheFullTileWouldNotRefine) {
     TileGrid g = terrain_tile_grid(t, 65);
     add_tile_levels(t, g);
     TileSet set(g, terrain_tile_loader(t, g), std::size_t(1) << 30);
-    const Camera cam = camera_at({500, t.max_height() + 100, -100}, 20, -8, 40000);
+    const Camera cam = test::camera_at({500, t.max_height() + 100, -100}, 20, -8, 40000, 640, 360);
     const double c = rottger_c(1.0, cam.focal_px(), 4.0);
     int reduced = 0;
     for (int r = 0; r < g.tile_rows; ++r)
@@ -160,7 +149,7 @@ TEST(TileLevels, NoCrackBetweenLevels) {
         for (const auto& [eye, heading, pitch] : views)
             for (const double err : {0.5, 1.0, 4.0}) {
                 MeshArrays m;
-                const TileFrameStats s = set->build_mesh(camera_at(eye, heading, pitch, 40000), err, m);
+                const TileFrameStats s = set->build_mesh(test::camera_at(eye, heading, pitch, 40000, 640, 360), err, m);
                 EXPECT_GE(levels_used(s), 2) << "error " << err << " view " << heading;
                 EXPECT_EQ(test::open_edges(m, set->visible_tiles(), float(g.tile_world_size())), 0) << "error " << err;
             }
@@ -173,7 +162,7 @@ TEST(TileLevels, StreamsWithinTheFrameUnderTheBound) {
     const Terrain t = island(1025);
     TileGrid g = terrain_tile_grid(t, 65);
     add_tile_levels(t, g);
-    const Camera cam = camera_at({t.width() / 2, t.max_height() + 50, t.width() / 2}, 30, -10, 40000);
+    const Camera cam = test::camera_at({t.width() / 2, t.max_height() + 50, t.width() / 2}, 30, -10, 40000, 640, 360);
     TileSet unbounded(g, terrain_tile_loader(t, g), std::size_t(1) << 30);
     MeshArrays ref;
     const TileFrameStats all = unbounded.build_mesh(cam, 1.0, ref);
@@ -205,7 +194,7 @@ TEST(TileLevels, AccuracyAgainstFullResolution) {
     add_tile_levels(t, g);
     const TileLoader loader = loader_with_d2(t, g);
     TileSet reduced(g, loader, std::size_t(1) << 30);
-    Camera cam = camera_at({t.width() / 2, t.max_height() + 150, -300}, 0, -12, 20000);
+    Camera cam = test::camera_at({t.width() / 2, t.max_height() + 150, -300}, 0, -12, 20000, 640, 360);
     cam.width = 1280;
     cam.height = 720;
     MeshArrays m, mf;

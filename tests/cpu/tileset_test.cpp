@@ -8,6 +8,8 @@
 #include "core/Error.h"
 #include "TileSeams.h"
 
+#include "TestCameras.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -24,19 +26,6 @@ Terrain slope(int n, float hs = 1.0f) {
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) t.raw(i, j) = std::uint16_t(100 + (i * 7 + j * 3) % 23 + i / 4);
     return t;
-}
-
-Camera camera_at(glm::dvec3 eye, double heading, double pitch, double far) {
-    Camera c;
-    c.eye = eye;
-    c.heading = heading;
-    c.pitch = pitch;
-    c.fov = 60;
-    c.width = 320;
-    c.height = 180;
-    c.near = 1;
-    c.far = far;
-    return c;
 }
 
 // Edges of a triangle list used once whose reverse is missing, excluding the
@@ -101,7 +90,7 @@ TEST(TileSet, CulledTilesAreNeitherLoadedNorDrawn) {
     auto base = terrain_tile_loader(t, g);
     TileSet set(g, [&](int r, int c, int level) { loads.insert({r, c}); return base(r, c, level); }, std::size_t(1) << 30);
     // In tile (4, 4), looking south (+Z) with far = 20: rings = ceil(20/16)+1 = 3.
-    const Camera cam = camera_at({72, 140, 72}, 0, -10, 20);
+    const Camera cam = test::camera_at({72, 140, 72}, 0, -10, 20, 320, 180);
     MeshArrays m;
     const TileFrameStats s = set.build_mesh(cam, 1.0, m);
     EXPECT_EQ(s.rings, 3);
@@ -127,7 +116,7 @@ TEST(TileSet, LruRespectsMemoryBound) {
     // Measure one frame's footprint, then bound the cache just above it.
     TileSet probe(g, base, std::size_t(1) << 30);
     MeshArrays m;
-    Camera cam = camera_at({16, 200, 16}, 45, -20, 120);
+    Camera cam = test::camera_at({16, 200, 16}, 45, -20, 120, 320, 180);
     const TileFrameStats first = probe.build_mesh(cam, 1.0, m);
     const std::size_t bound = first.cache_bytes + first.cache_bytes / 4;
     TileSet set(g, [&](int r, int c, int level) { ++loads; return base(r, c, level); }, bound);
@@ -163,7 +152,7 @@ TEST(TileSet, NoCrackAcrossTileSeams) {
     for (const auto& [eye, heading, pitch] :
          {std::tuple{glm::dvec3(W / 2, 3000, -200), 0.0, -60.0}, std::tuple{glm::dvec3(100, 800, 100), 45.0, -30.0},
           std::tuple{glm::dvec3(W / 2, t.max_height() + 50, W / 2), 200.0, -10.0}}) {
-        Camera cam = camera_at(eye, heading, pitch, 20000);
+        Camera cam = test::camera_at(eye, heading, pitch, 20000, 320, 180);
         for (double err : {0.5, 2.0, 8.0}) {
             MeshArrays m;
             const TileFrameStats s = set.build_mesh(cam, err, m);
@@ -174,7 +163,7 @@ TEST(TileSet, NoCrackAcrossTileSeams) {
         }
     }
     // Everything visible from high above: the whole padded square is closed.
-    Camera top = camera_at({W / 2, 6000, W / 2 - 1}, 0, -88, 20000);
+    Camera top = test::camera_at({W / 2, 6000, W / 2 - 1}, 0, -88, 20000, 320, 180);
     top.projection = Projection::Tilt; // looking straight down needs the tilted camera
     top.fov = 120;
     MeshArrays m;
@@ -199,7 +188,7 @@ TEST(TileSet, AccuracyAgainstFullResolution) {
     const Terrain& t = demo.terrain;
     const TileGrid g = terrain_tile_grid(t, 257);
     TileSet set(g, terrain_tile_loader(t, g), std::size_t(1) << 30);
-    Camera cam = camera_at({t.width() / 2, t.max_height() + 150, -300}, 0, -12, 8000);
+    Camera cam = test::camera_at({t.width() / 2, t.max_height() + 150, -300}, 0, -12, 8000, 320, 180);
     cam.width = 1280;
     cam.height = 720;
     MeshArrays m;
@@ -240,7 +229,7 @@ TEST(TileSet, ScreenSpaceErrorByHand) {
     for (const auto& [i, j] : {std::pair{0, 0}, std::pair{0, 2}, std::pair{2, 0}, std::pair{2, 2}})
         m.positions.emplace_back(10.0f * j, 0.0f, 10.0f * i);
     m.indices = {0, 2, 3, 0, 3, 1};
-    Camera cam = camera_at({10, 0, -90}, 0, 0, 1000); // facing south at the centre (10, y, 10)
+    Camera cam = test::camera_at({10, 0, -90}, 0, 0, 1000, 320, 180); // facing south at the centre (10, y, 10)
     const ScreenError e = screen_space_error(m, t, cam);
     EXPECT_EQ(e.samples, 9);
     EXPECT_NEAR(e.max_px, cam.focal_px() * 8.0 / 100.0, 1e-9);
