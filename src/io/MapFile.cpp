@@ -36,7 +36,7 @@ MapFile parse_map(std::string_view text, const std::string& subject, const std::
         throw Error(subject, "sun_dir must not be the zero vector");
     env.sun_color = optional_vec3(root, "sun_color", env.sun_color, subject);
     env.ambient = optional_vec3(root, "ambient", env.ambient, subject);
-    env.fog_density = float(optional_number(root, "fog_density", env.fog_density, subject));
+    env.fog_density = optional_float(root, "fog_density", env.fog_density, subject);
     if (env.fog_density < 0) throw Error(subject, "fog_density must not be negative");
     env.fog_color = optional_vec3(root, "fog_color", env.fog_color, subject);
     env.sky_zenith = optional_vec3(root, "sky_zenith", env.sky_zenith, subject);

@@ -107,13 +107,21 @@ double optional_number(const toml::table& table, std::string_view key, double fa
     return number(table, key, subject, &fallback);
 }
 
+float optional_float(const toml::table& table, std::string_view key, float fallback, const std::string& subject) {
+    const double v = optional_number(table, key, fallback, subject);
+    if (!std::isfinite(float(v))) throw Error(subject, at_line(table, key) + std::string(key) + " is beyond float range");
+    return float(v);
+}
+
 glm::vec3 optional_vec3(const toml::table& table, std::string_view key, glm::vec3 fallback, const std::string& subject) {
     const toml::node* n = table.get(key);
     if (!n) return fallback;
     const toml::array* a = n->as_array();
     bool ok = a && a->size() == 3;
-    for (std::size_t i = 0; ok && i < 3; ++i) ok = (*a)[i].is_number() && std::isfinite(*(*a)[i].value<double>());
-    if (!ok) throw Error(subject, at_line(*n) + std::string(key) + " must be an array of three numbers");
+    // Stored as float: a double beyond float range would become inf and not survive format_map/parse_map.
+    for (std::size_t i = 0; ok && i < 3; ++i)
+        ok = (*a)[i].is_number() && std::isfinite(float(*(*a)[i].value<double>()));
+    if (!ok) throw Error(subject, at_line(*n) + std::string(key) + " must be an array of three numbers within float range");
     return {float(*(*a)[0].value<double>()), float(*(*a)[1].value<double>()), float(*(*a)[2].value<double>())};
 }
 

@@ -25,6 +25,8 @@ void check_keys(const toml::table& table, std::initializer_list<std::string_view
 double number(const toml::table& table, std::string_view key, const std::string& subject, const double* fallback);
 double required_number(const toml::table& table, std::string_view key, const std::string& subject);
 double optional_number(const toml::table& table, std::string_view key, double fallback, const std::string& subject);
+// optional_number for a value stored as float: an error when it does not fit in a float.
+float optional_float(const toml::table& table, std::string_view key, float fallback, const std::string& subject);
 
 // An array of exactly three numbers, e.g. sun_dir = [x, y, z], or the fallback when absent.
 glm::vec3 optional_vec3(const toml::table& table, std::string_view key, glm::vec3 fallback, const std::string& subject);

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -25,8 +24,7 @@ const std::uint32_t kLeastKey = std::bit_cast<std::uint32_t>(kLeastError) >> 16;
 // A hint that a line will be read soon. The rebuild waits mostly on loads of
 // nodes, heights and variance bounds at random places; issuing them together
 // before they are needed lets the misses overlap.
-static const bool kPf = !std::getenv("ROAM_NOPF"); // SCRATCH
-inline void prefetch(const void* p) { if (kPf) __builtin_prefetch(p); }
+inline void prefetch(const void* p) { __builtin_prefetch(p); }
 
 } // namespace
 

@@ -148,6 +148,14 @@ TEST(MapFile, BadObjectInMap) {
               std::string::npos);
 }
 
+// Found by fuzz_map: a double beyond float range became inf in the float
+// fields and the formatted map no longer parsed.
+TEST(MapFile, BeyondFloatRange) {
+    EXPECT_NE(problem_of("h_scale = 1\nv_scale = 1\nfog_density = 1e300\n").find("fog_density is beyond float range"),
+              std::string::npos);
+    EXPECT_NE(problem_of("h_scale = 1\nv_scale = 1\nsun_dir = [1e39, 0, 1]\n").find("sun_dir must be"), std::string::npos);
+}
+
 TEST(MapFile, MissingFile) {
     test::ScratchDir dir;
     try {
