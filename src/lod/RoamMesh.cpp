@@ -66,6 +66,16 @@ RoamMesh::RoamMesh(const Terrain& terrain, const RoamOptions& options) : terrain
         radius_[std::size_t(level)] =
             float(0.5 * grid().h_scale() * double(size_ - 1) * std::sqrt(2.0) / std::pow(std::sqrt(2.0), level));
     buckets_.resize(kRoamBuckets);
+    // Inside the terrain its own normals and colors; padding samples (reached
+    // only by border-straddling triangles) take the padded copy's.
+    attributes_.resize(std::size_t(size_) * std::size_t(size_));
+    for (int row = 0; row < size_; ++row)
+        for (int col = 0; col < size_; ++col) {
+            const Terrain& src = (row < domain_rows_ && col < domain_cols_) ? terrain : grid();
+            const glm::vec3 n = src.sample_normal(row, col);
+            attributes_[std::size_t(row) * std::size_t(size_) + std::size_t(col)] = {
+                src.color(row, col), 0, std::int16_t(std::lround(n.x * 32767.0f)), std::int16_t(std::lround(n.z * 32767.0f))};
+        }
 }
 
 void RoamMesh::reserve_for(int budget) {
@@ -347,9 +357,15 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
     s.forced_splits = forced_;
     s.vertices = vertex_count_;
     double sum = 0;
+    indices_.resize(3 * std::size_t(count_));
+    std::uint32_t* idx = indices_.data();
     for (std::size_t i = 0; i < node_count_; ++i) {
         const Node& nd = nodes_[i];
         if (nd.flags() & (kSplit | kOutside)) continue;
+        idx[0] = nd.v[0];
+        idx[1] = nd.v[1];
+        idx[2] = nd.v[2];
+        idx += 3;
         ++s.triangles;
         s.max_level = std::max(s.max_level, int(nd.level()));
         if (nd.flags() & kInvisible) continue;
@@ -368,25 +384,22 @@ void RoamMesh::write_mesh(MeshArrays& out) const {
     out.colors.resize(nv);
     const Terrain& g = grid();
     const float hs = g.h_scale(), vs = g.v_scale(), y0 = g.y_offset();
+    constexpr float unit = 1.0f / 32767.0f;
+    // Vertices are in split order, scattered over the grid: ask for the
+    // records well ahead so that their misses overlap.
+    constexpr std::size_t ahead = 16;
+    auto record = [&](const Vertex& v) { return &attributes_[std::size_t(v.row) * std::size_t(size_) + std::size_t(v.col)]; };
+    for (std::size_t i = 0; i < std::min(ahead, nv); ++i) prefetch(record(vertices_[i]));
     for (std::size_t i = 0; i < nv; ++i) {
+        if (i + ahead < nv) prefetch(record(vertices_[i + ahead]));
         const Vertex& v = vertices_[i];
         out.positions[i] = {hs * float(v.col), vs * float(v.raw) + y0, hs * float(v.row)};
-        // Inside the terrain its own normals and colors; padding vertices
-        // (only on border-straddling triangles) take the padded copy's.
-        const Terrain& src = (v.row < domain_rows_ && v.col < domain_cols_) ? *terrain_ : padded_copy_;
-        out.normals[i] = src.sample_normal(v.row, v.col);
-        out.colors[i] = src.color(v.row, v.col);
+        const SampleAttributes& a = *record(v);
+        const float nx = unit * float(a.nx), nz = unit * float(a.nz);
+        out.normals[i] = {nx, std::sqrt(std::max(1.0f - nx * nx - nz * nz, 0.0f)), nz};
+        out.colors[i] = a.color;
     }
-    out.indices.resize(3 * std::size_t(count_));
-    std::uint32_t* idx = out.indices.data();
-    for (std::size_t i = 0; i < node_count_; ++i) {
-        const Node& nd = nodes_[i];
-        if (nd.flags() & (kSplit | kOutside)) continue;
-        idx[0] = nd.v[0];
-        idx[1] = nd.v[1];
-        idx[2] = nd.v[2];
-        idx += 3;
-    }
+    out.indices.assign(indices_.begin(), indices_.end());
 }
 
 } // namespace overflight
