@@ -53,15 +53,21 @@ std::string roam_bench_json(RoamMesh& roam, const Camera& camera, int frames) {
         roam.write_mesh(mesh);
         return ms_since(t0);
     };
+    // Issue 5's rate at 64k triangles and its "100k-triangle mesh in <= 10 ms",
+    // best of `frames` (tessellation and output arrays, one core).
     RoamStats s;
-    double best = 1e300;
-    for (int i = 0; i < std::max(frames, 1); ++i) best = std::min(best, frame(65536, s));
-    nlohmann::ordered_json j = {{"method", "roam"},
-                                {"triangles_per_s", double(s.triangles) / (best * 1e-3)},
-                                {"ms_tessellate_65536", best}};
+    nlohmann::ordered_json j = {{"method", "roam"}};
+    for (const int budget : {100000, 65536}) {
+        double best = 1e300;
+        for (int i = 0; i < std::max(frames, 1); ++i) best = std::min(best, frame(budget, s));
+        j["ms_tessellate_" + std::to_string(budget)] = best;
+        j["triangles_per_s"] = double(s.triangles) / (best * 1e-3);
+    }
     nlohmann::ordered_json curve = nlohmann::ordered_json::array();
     for (int budget = 4096; budget <= 262144; budget *= 2) {
-        const double ms = frame(budget, s);
+        // Best of three: the first rebuild at a larger budget also grows the pools.
+        double ms = 1e300;
+        for (int i = 0; i < 3; ++i) ms = std::min(ms, frame(budget, s));
         curve.push_back({{"budget", budget},
                          {"triangles", s.triangles},
                          {"ms_tessellate", ms},

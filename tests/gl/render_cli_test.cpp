@@ -127,6 +127,7 @@ TEST(BenchCli, DefaultRunsEveryMethodWithStepsAndAccuracy) {
         }
         if (m == "roam") {
             EXPECT_GT(run["triangles_per_s"].get<double>(), 0.0);
+            EXPECT_GT(run["ms_tessellate_100000"].get<double>(), 0.0);
             EXPECT_EQ(run["error_curve"].size(), 7u); // 4k .. 256k
         }
         if (m == "roam" || m == "quadtree") {
