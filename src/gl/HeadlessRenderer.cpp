@@ -97,7 +97,10 @@ void HeadlessRenderer::composite(const ColorImage& raycast_color, const DepthIma
     clock.lap("color_upload");
     long long objects = 0;
     if (with_objects) {
-        target.upload_depth(raycast_depth);
+        // Objects only test depth inside their screen rectangle; the whole
+        // buffer is loaded only when the caller reads the final depth back.
+        target.upload_depth(raycast_depth, depth ? std::nullopt
+                                                 : std::optional<PixelRect>(renderer_->objects().screen_rect(camera)));
         clock.lap("depth_upload");
         objects = renderer_->draw_objects();
         clock.lap("objects");

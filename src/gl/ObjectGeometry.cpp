@@ -5,6 +5,7 @@
 #include "gl/Catenary.h"
 #include "io/ModelLoader.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -109,6 +110,27 @@ void add_tower(ObjectGeometry& g, const Frame& f, double height, Rgb8 c) {
     add_line(g, f(arm, height, 0), f(w1, 0.85 * height, 0), c);
 }
 
+// A piece of geometry (an object, a tower, a span of cables) is bounded by
+// the triangle and line vertices added between begin_piece and end_piece.
+struct PieceStart {
+    std::size_t triangles, lines;
+};
+
+PieceStart begin_piece(const ObjectGeometry& g) { return {g.triangles.positions.size(), g.line_points.size()}; }
+
+void end_piece(ObjectGeometry& g, PieceStart from) {
+    WorldBox b{glm::vec3(HUGE_VALF), glm::vec3(-HUGE_VALF)};
+    auto grow = [&](const std::vector<glm::vec3>& points, std::size_t first) {
+        for (std::size_t i = first; i < points.size(); ++i) {
+            b.lo = glm::min(b.lo, points[i]);
+            b.hi = glm::max(b.hi, points[i]);
+        }
+    };
+    grow(g.triangles.positions, from.triangles);
+    grow(g.line_points, from.lines);
+    if (b.lo.x <= b.hi.x) g.bounds.push_back(b);
+}
+
 } // namespace
 
 std::vector<glm::dvec3> box_corners(const SceneObject& o, const Terrain& t) {
@@ -120,9 +142,11 @@ std::vector<glm::dvec3> box_corners(const SceneObject& o, const Terrain& t) {
     return out;
 }
 
+
 ObjectGeometry build_object_geometry(const Scene& scene, const Terrain& t) {
     ObjectGeometry g;
     for (const SceneObject& o : scene.objects) {
+        const PieceStart piece = begin_piece(g);
         const Frame f = frame_of(o.x, base_y(o, t), o.z, o.heading);
         switch (o.kind) {
         case ObjectKind::Box:
@@ -145,6 +169,7 @@ ObjectGeometry build_object_geometry(const Scene& scene, const Terrain& t) {
             break;
         }
         }
+        end_piece(g, piece);
     }
     for (const TransmissionLine& line : scene.lines) {
         const std::size_t n = line.points.size();
@@ -157,15 +182,20 @@ ObjectGeometry build_object_geometry(const Scene& scene, const Terrain& t) {
             const double heading = glm::degrees(std::atan2(dir.x, dir.y));
             const double x = line.points[k].x, z = line.points[k].y;
             towers.push_back(frame_of(x, double(t.height_bilinear(float(x), float(z))), z, heading));
+            const PieceStart piece = begin_piece(g);
             add_tower(g, towers.back(), line.height, Rgb8{110, 110, 115});
+            end_piece(g, piece);
         }
         const double arm = tower_arm(line.height);
-        for (std::size_t k = 0; k + 1 < n; ++k)
+        for (std::size_t k = 0; k + 1 < n; ++k) {
+            const PieceStart piece = begin_piece(g);
             for (double side : {-arm, 0.0, arm}) {
                 const auto pts = catenary_points(towers[k](side, line.height, 0), towers[k + 1](side, line.height, 0),
                                                  line.sag, kCableSegments);
                 for (std::size_t i = 0; i + 1 < pts.size(); ++i) add_line(g, pts[i], pts[i + 1], line.color);
             }
+            end_piece(g, piece);
+        }
     }
     return g;
 }

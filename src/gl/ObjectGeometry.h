@@ -19,6 +19,7 @@
 // transmission lines drawn with OpenGL over the terrain).
 #include "core/MeshArrays.h"
 #include "core/Scene.h"
+#include "core/ScreenRect.h"
 #include "core/Terrain.h"
 
 #include <glm/vec2.hpp>
@@ -32,6 +33,9 @@ struct ObjectGeometry {
     MeshArrays triangles;                 // lit solids
     std::vector<glm::vec3> line_points;   // segment k = points 2k, 2k+1
     std::vector<Rgb8> line_colors;        // one per point
+    // World bounds of each object, each tower of a line and each span of its
+    // cables: every vertex above lies in one of them (screen_rect).
+    std::vector<WorldBox> bounds;
 };
 
 // Number of straight pieces per cable span.

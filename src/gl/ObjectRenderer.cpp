@@ -9,6 +9,7 @@ void ObjectRenderer::set_scene(const Scene& scene, const Terrain& terrain) {
     const ObjectGeometry g = build_object_geometry(scene, terrain);
     solids_.upload(g.triangles);
     lines_.upload(g.line_points, g.line_colors);
+    bounds_ = g.bounds;
 }
 
 long long ObjectRenderer::draw() const {

@@ -6,6 +6,7 @@
 // Based on: Szenberg et al. 1997 sec. 5 (Fig. 5: objects by Z-buffer over the
 // terrain's color and depth) and Table 1 ("Objects" step).
 #include "core/Scene.h"
+#include "core/ScreenRect.h"
 #include "core/Terrain.h"
 #include "gl/StreamedMesh.h"
 
@@ -21,10 +22,14 @@ public:
     long long draw() const;
     long long triangle_count() const { return solids_.triangle_count(); }
     std::size_t line_segment_count() const { return lines_.segment_count(); }
+    // The pixels the objects can cover for `camera` (core screen_rect of their
+    // bounds): where a composite needs the ray caster's depth.
+    PixelRect screen_rect(const Camera& camera) const { return overflight::screen_rect(bounds_, camera); }
 
 private:
     StreamedMesh solids_;
     LineBatch lines_;
+    std::vector<WorldBox> bounds_;
 };
 
 } // namespace overflight::gl

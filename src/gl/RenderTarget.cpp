@@ -3,6 +3,7 @@
 
 #include "core/Error.h"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -17,6 +18,18 @@ void copy_flipped(void* dst, const void* src, int rows, std::size_t row_bytes) {
     const auto* s = static_cast<const std::uint8_t*>(src);
     for (int r = 0; r < rows; ++r)
         std::memcpy(d + std::size_t(rows - 1 - r) * row_bytes, s + std::size_t(r) * row_bytes, row_bytes);
+}
+
+// The first row of `rect` at or below which `depth` holds terrain (a value
+// below 1.0) within the rect's columns; rect.row1 when it is all sky.
+int first_terrain_row(const DepthImage& depth, const PixelRect& rect) {
+    for (int r = rect.row0; r < rect.row1; ++r) {
+        const float* row = depth.pixels.data() + std::size_t(r) * std::size_t(depth.width);
+        float nearest = 1.0f;
+        for (int c = rect.col0; c < rect.col1; ++c) nearest = std::min(nearest, row[c]);
+        if (nearest < 1.0f) return r;
+    }
+    return rect.row1;
 }
 
 const char* const kCopyVs = R"(
@@ -96,21 +109,40 @@ void RenderTarget::upload_color(const ColorImage& color) {
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
 
-void RenderTarget::upload_depth(const DepthImage& depth) {
+void RenderTarget::upload_depth(const DepthImage& depth, std::optional<PixelRect> rect) {
     if (!offscreen()) throw Error("opengl", "depth upload needs an offscreen target");
     if (depth.width != width_ || depth.height != height_)
         throw Error("opengl", "depth image size does not match the render target");
-    const std::size_t row = std::size_t(width_) * 4;
-    void* dst = glMapNamedBufferRange(depth_pbo_.get(), 0, GLsizeiptr(row * height_),
+    const PixelRect r = rect.value_or(PixelRect{0, 0, width_, height_});
+    if (r.col0 < 0 || r.row0 < 0 || r.col1 > width_ || r.row1 > height_)
+        throw Error("opengl", "depth upload rectangle is outside the render target");
+    if (r.empty()) return;
+    const int w = r.col1 - r.col0;
+    // Above the horizon the ray caster's depth is 1.0 everywhere: a clear
+    // costs no transfer.
+    const int terrain = first_terrain_row(depth, r);
+    if (terrain > r.row0) {
+        const float far = 1.0f;
+        glClearTexSubImage(depth_tex_.get(), 0, r.col0, height_ - terrain, 0, w, terrain - r.row0, 1,
+                           GL_DEPTH_COMPONENT, GL_FLOAT, &far);
+    }
+    const int rows = r.row1 - terrain;
+    if (rows == 0) return;
+    const std::size_t row_bytes = std::size_t(w) * 4;
+    void* dst = glMapNamedBufferRange(depth_pbo_.get(), 0, GLsizeiptr(row_bytes * std::size_t(rows)),
                                       GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
     if (!dst) throw Error("opengl", "cannot map the depth pixel buffer");
-    copy_flipped(dst, depth.pixels.data(), height_, row);
+    auto* d = static_cast<std::uint8_t*>(dst);
+    for (int k = 0; k < rows; ++k) // GL row 0 is the bottom
+        std::memcpy(d + std::size_t(rows - 1 - k) * row_bytes,
+                    depth.pixels.data() + std::size_t(terrain + k) * std::size_t(width_) + std::size_t(r.col0),
+                    row_bytes);
     glUnmapNamedBuffer(depth_pbo_.get());
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, depth_pbo_.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     // The ray caster's values are already GL window depth for the same camera
     // (Szenberg eq. 7), so they go straight into the depth attachment.
-    glTextureSubImage2D(depth_tex_.get(), 0, 0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    glTextureSubImage2D(depth_tex_.get(), 0, r.col0, height_ - r.row1, w, rows, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
 

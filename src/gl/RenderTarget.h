@@ -10,9 +10,11 @@
 // Table 1 (color buffer load, Z-buffer load); here through pixel buffer
 // objects and glTextureSubImage2D instead of glDrawPixels.
 #include "core/Image.h"
+#include "core/ScreenRect.h"
 #include "gl/GlProgram.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace overflight::gl {
@@ -36,8 +38,13 @@ public:
     // The image must have the target's size; depth is window depth, 1.0 = sky.
     // Offscreen targets only: a window target draws the images with a
     // full-screen pass writing gl_FragDepth instead (upload_fullscreen).
+    // upload_depth loads only the pixels of `rect` (core rows, row 0 at the
+    // top; default the whole image) and leaves the rest of the attachment as
+    // it was: a composite needs depth only where objects can be drawn
+    // (ObjectRenderer::screen_rect). Within the rect, the rows above the
+    // topmost one holding terrain are cleared to 1.0 without a transfer.
     void upload_color(const ColorImage& color);
-    void upload_depth(const DepthImage& depth);
+    void upload_depth(const DepthImage& depth, std::optional<PixelRect> rect = std::nullopt);
     // Window targets (or any target): draws previously uploaded textures of an
     // offscreen target `src` into this target's color and depth (gl_FragDepth).
     void draw_from(const RenderTarget& src) const;

@@ -60,9 +60,12 @@ Frame voxel(const DataSet& d, const Camera& cam) {
     return f;
 }
 
-Frame with_objects(gl::HeadlessRenderer& r, const char* method, const Camera& cam, const Frame* raycast) {
+// Over the ray caster without `read_depth` the composite loads depth only in
+// the objects' screen rectangle (RenderTarget::upload_depth), as bench does.
+Frame with_objects(gl::HeadlessRenderer& r, const char* method, const Camera& cam, const Frame* raycast,
+                   bool read_depth = false) {
     Frame f;
-    if (raycast) r.composite(raycast->color, raycast->depth, cam, true, f.color, &f.depth);
+    if (raycast) r.composite(raycast->color, raycast->depth, cam, true, f.color, read_depth ? &f.depth : nullptr);
     else r.render(*gl::parse_terrain_method(method), cam, f.color, &f.depth);
     return f;
 }
@@ -144,6 +147,22 @@ TEST(GlObjects, SameBoxCoversTheSamePixelsOverVoxelAndMesh) {
         EXPECT_NEAR(b.r0, analytic.r0, 2.0);
         // The base sits on the ground, partly below the surface on a slope: only the top is exact.
     }
+}
+
+// The depth upload transfers only the rows below the horizon and clears the
+// sky rows: what the objects are tested against must still be the ray
+// caster's depth, bit for bit, on a view with sky above and terrain below.
+TEST(GlObjects, CompositedDepthIsTheRayCastersWithSkyRows) {
+    const DataSet& d = demo();
+    Camera cam = demo_camera(320, 200);
+    cam.pitch = 20;
+    gl::HeadlessRenderer empty(d, Scene{});
+    const Frame rc = voxel(d, cam);
+    for (int c = 0; c < cam.width; ++c) ASSERT_EQ(rc.depth.at(c, 0), 1.0f) << "the view must show sky at the top";
+    ASSERT_LT(rc.depth.at(160, 199), 1.0f) << "and terrain at the bottom";
+    const Frame f = with_objects(empty, "voxel", cam, &rc, true);
+    EXPECT_EQ(f.depth.pixels, rc.depth.pixels);
+    EXPECT_EQ(f.color.pixels, rc.color.pixels);
 }
 
 TEST(GlObjects, BoxBehindARidgeIsHiddenInBothRenderers) {

@@ -1,0 +1,84 @@
+// screen_rect (core/ScreenRect.h): the pixels world boxes can cover, for the
+// compositor's partial depth load. Each outcome on hand-placed boxes, and
+// random points inside random boxes always project inside their rectangle.
+#include "TestCameras.h"
+#include "core/ScreenRect.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+namespace overflight {
+namespace {
+
+// Looking south (+Z) from the origin, 200x100, shear pitch -10.
+Camera camera() {
+    Camera c = test::camera_at({0, 0, 0}, 0, -10, 1000, 200, 100);
+    c.near = 1;
+    return c;
+}
+
+TEST(ScreenRect, NoBoxesIsEmpty) { EXPECT_TRUE(screen_rect({}, camera()).empty()); }
+
+TEST(ScreenRect, BoxAheadBoundsItsCorners) {
+    const Camera c = camera();
+    const std::vector<WorldBox> boxes{{{-5, -10, 95}, {5, 0, 105}}};
+    const PixelRect r = screen_rect(boxes, c);
+    ASSERT_FALSE(r.empty());
+    EXPECT_LT(r.area(), 200LL * 100 / 4);
+    for (int k = 0; k < 8; ++k) {
+        const auto& b = boxes[0];
+        const Camera::Projected p =
+            c.project({(k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 4) ? b.hi.z : b.lo.z});
+        EXPECT_GE(p.col, r.col0 + 1.0);
+        EXPECT_LE(p.col, r.col1 - 1.0);
+        EXPECT_GE(p.row, r.row0 + 1.0);
+        EXPECT_LE(p.row, r.row1 - 1.0);
+    }
+}
+
+TEST(ScreenRect, BoxBehindTheEyeIsSkipped) {
+    const std::vector<WorldBox> boxes{{{-5, -10, -105}, {5, 0, -95}}};
+    EXPECT_TRUE(screen_rect(boxes, camera()).empty());
+}
+
+TEST(ScreenRect, BoxCutByTheNearPlaneGivesTheWholeImage) {
+    const std::vector<WorldBox> boxes{{{-5, -10, 95}, {5, 0, 105}}, {{-1, -1, -1}, {1, 1, 3}}};
+    const PixelRect r = screen_rect(boxes, camera());
+    EXPECT_EQ(r.col0, 0);
+    EXPECT_EQ(r.row0, 0);
+    EXPECT_EQ(r.col1, 200);
+    EXPECT_EQ(r.row1, 100);
+}
+
+TEST(ScreenRect, BoxBesideTheViewClipsToNothing) {
+    // Far to the camera's side: its rectangle lies wholly left or right of the image.
+    const std::vector<WorldBox> boxes{{{500, -10, 95}, {510, 0, 105}}};
+    EXPECT_TRUE(screen_rect(boxes, camera()).empty());
+}
+
+TEST(ScreenRect, RandomPointsInRandomBoxesProjectInside) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1, 1);
+    for (Projection proj : {Projection::Shear, Projection::Tilt}) {
+        Camera c = camera();
+        c.projection = proj;
+        for (int i = 0; i < 200; ++i) {
+            const glm::vec3 centre{300 * u(rng), 50 * u(rng), 150 + 140 * u(rng)};
+            const glm::vec3 half{1 + 20 * std::abs(u(rng)), 1 + 20 * std::abs(u(rng)), 1 + 20 * std::abs(u(rng))};
+            const std::vector<WorldBox> boxes{{centre - half, centre + half}};
+            const PixelRect r = screen_rect(boxes, c);
+            for (int k = 0; k < 20; ++k) {
+                const glm::dvec3 p = centre + half * glm::vec3(u(rng), u(rng), u(rng));
+                const Camera::Projected q = c.project(p);
+                if (q.col < 0 || q.col >= c.width || q.row < 0 || q.row >= c.height) continue;
+                EXPECT_TRUE(q.col >= r.col0 && q.col < r.col1 && q.row >= r.row0 && q.row < r.row1)
+                    << "box " << i << " point " << k;
+            }
+        }
+    }
+}
+
+} // namespace
+} // namespace overflight
