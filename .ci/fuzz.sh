@@ -59,6 +59,7 @@ height = 40.0
 sag = 4.0
 MAP
 printf 'h_scale = 1\nv_scale = 1\n' >"$seeds/fuzz_map/minimal"
+printf 'h_scale = 1\nv_scale = 1\nsun_dir = [3e38, 0, 1]\nfog_density = 3.4e38\n' >"$seeds/fuzz_map/float_range"
 
 status=0
 for h in "${harnesses[@]}"; do
