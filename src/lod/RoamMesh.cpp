@@ -5,6 +5,8 @@
 
 #include "core/Error.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -69,13 +71,15 @@ RoamMesh::RoamMesh(const Terrain& terrain, const RoamOptions& options) : terrain
     // Inside the terrain its own normals and colors; padding samples (reached
     // only by border-straddling triangles) take the padded copy's.
     attributes_.resize(std::size_t(size_) * std::size_t(size_));
-    for (int row = 0; row < size_; ++row)
+    tbb::parallel_for(0, size_, [&](int row) {
         for (int col = 0; col < size_; ++col) {
             const Terrain& src = (row < domain_rows_ && col < domain_cols_) ? terrain : grid();
             const glm::vec3 n = src.sample_normal(row, col);
             attributes_[std::size_t(row) * std::size_t(size_) + std::size_t(col)] = {
-                src.color(row, col), 0, std::int16_t(std::lround(n.x * 32767.0f)), std::int16_t(std::lround(n.z * 32767.0f))};
+                src.color(row, col), 0, std::int16_t(std::lround(n.x * 32767.0f)),
+                std::int16_t(std::lround(n.z * 32767.0f))};
         }
+    });
 }
 
 void RoamMesh::reserve_for(int budget) {
@@ -388,7 +392,9 @@ void RoamMesh::write_mesh(MeshArrays& out) const {
     // Vertices are in split order, scattered over the grid: ask for the
     // records well ahead so that their misses overlap.
     constexpr std::size_t ahead = 16;
-    auto record = [&](const Vertex& v) { return &attributes_[std::size_t(v.row) * std::size_t(size_) + std::size_t(v.col)]; };
+    auto record = [&](const Vertex& v) {
+        return &attributes_[std::size_t(v.row) * std::size_t(size_) + std::size_t(v.col)];
+    };
     for (std::size_t i = 0; i < std::min(ahead, nv); ++i) prefetch(record(vertices_[i]));
     for (std::size_t i = 0; i < nv; ++i) {
         if (i + ahead < nv) prefetch(record(vertices_[i + ahead]));
