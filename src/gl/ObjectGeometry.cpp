@@ -142,7 +142,6 @@ std::vector<glm::dvec3> box_corners(const SceneObject& o, const Terrain& t) {
     return out;
 }
 
-
 ObjectGeometry build_object_geometry(const Scene& scene, const Terrain& t) {
     ObjectGeometry g;
     for (const SceneObject& o : scene.objects) {

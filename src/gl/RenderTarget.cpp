@@ -11,13 +11,15 @@ namespace overflight::gl {
 
 namespace {
 
-// Copies `rows` rows of `row_bytes` from src to dst in reverse order (core row 0
-// is the top, GL row 0 the bottom).
-void copy_flipped(void* dst, const void* src, int rows, std::size_t row_bytes) {
+// Copies `rows` rows of `row_bytes` from src (rows `src_stride` bytes apart,
+// default packed) to packed rows of dst in reverse order (core row 0 is the
+// top, GL row 0 the bottom).
+void copy_flipped(void* dst, const void* src, int rows, std::size_t row_bytes, std::size_t src_stride = 0) {
     auto* d = static_cast<std::uint8_t*>(dst);
     const auto* s = static_cast<const std::uint8_t*>(src);
+    const std::size_t stride = src_stride ? src_stride : row_bytes;
     for (int r = 0; r < rows; ++r)
-        std::memcpy(d + std::size_t(rows - 1 - r) * row_bytes, s + std::size_t(r) * row_bytes, row_bytes);
+        std::memcpy(d + std::size_t(rows - 1 - r) * row_bytes, s + std::size_t(r) * stride, row_bytes);
 }
 
 // The first row of `rect` at or below which `depth` holds terrain (a value
@@ -132,11 +134,8 @@ void RenderTarget::upload_depth(const DepthImage& depth, std::optional<PixelRect
     void* dst = glMapNamedBufferRange(depth_pbo_.get(), 0, GLsizeiptr(row_bytes * std::size_t(rows)),
                                       GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
     if (!dst) throw Error("opengl", "cannot map the depth pixel buffer");
-    auto* d = static_cast<std::uint8_t*>(dst);
-    for (int k = 0; k < rows; ++k) // GL row 0 is the bottom
-        std::memcpy(d + std::size_t(rows - 1 - k) * row_bytes,
-                    depth.pixels.data() + std::size_t(terrain + k) * std::size_t(width_) + std::size_t(r.col0),
-                    row_bytes);
+    copy_flipped(dst, depth.pixels.data() + std::size_t(terrain) * std::size_t(width_) + std::size_t(r.col0), rows,
+                 row_bytes, std::size_t(width_) * 4);
     glUnmapNamedBuffer(depth_pbo_.get());
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, depth_pbo_.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
