@@ -7,16 +7,19 @@
 
 namespace overflight::app {
 
+std::unique_ptr<TileSet> tile_directory_tiles(const std::string& tile_dir, std::size_t memory_bound) {
+    const TileIndex index = read_tile_index(tile_dir);
+    return std::make_unique<TileSet>(index.grid, tile_directory_loader(tile_dir, index), memory_bound);
+}
+
 QuadtreeMethod::QuadtreeMethod(const DataSet& data, int tile_size, std::size_t memory_bound) {
     TileGrid grid = terrain_tile_grid(data.terrain, tile_size);
     TileLoader loader = terrain_tile_loader(data.terrain, grid);
     tiles_ = std::make_unique<TileSet>(std::move(grid), std::move(loader), memory_bound);
 }
 
-QuadtreeMethod::QuadtreeMethod(const std::string& tile_dir, std::size_t memory_bound) {
-    const TileIndex index = read_tile_index(tile_dir);
-    tiles_ = std::make_unique<TileSet>(index.grid, tile_directory_loader(tile_dir, index), memory_bound);
-}
+QuadtreeMethod::QuadtreeMethod(const std::string& tile_dir, std::size_t memory_bound)
+    : tiles_(tile_directory_tiles(tile_dir, memory_bound)) {}
 
 const TileFrameStats& QuadtreeMethod::build(const Camera& camera, double error_px, MeshArrays& out) {
     error_px_ = error_px;

@@ -16,6 +16,10 @@
 
 namespace overflight::app {
 
+// The tiles of a directory written by `overflight tile`, read lazily within
+// memory_bound bytes. Throws as read_tile_index.
+std::unique_ptr<TileSet> tile_directory_tiles(const std::string& tile_dir, std::size_t memory_bound);
+
 class QuadtreeMethod {
 public:
     static constexpr std::size_t default_memory_bound = std::size_t(1) << 30; // 1 GiB of loaded tiles

@@ -6,10 +6,15 @@
 // with scripted keys (FROM-TO in frames). With --replay: the recorded cameras
 // rendered headless to DIR/frame_00000.png ... (and to a video through ffmpeg).
 // Methods (gl/FlightMethods.h, Tab order): mesh, voxel, roam, quadtree.
+// TERRAIN may be a tile directory larger than memory: the quadtree then reads
+// its full-resolution tiles lazily within --cache-mib, while the vehicle,
+// the chase camera and the other methods use its overview (at most 2049
+// samples per side: every f-th sample, exact when the terrain is no larger).
 // Prints one CSV line per method used:
 //   method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step
 // the last column as "step:ms;step:ms;..." (mean over the timed frames).
 #include "Commands.h"
+#include "QuadtreeMethod.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "gl/FlightMethods.h"
@@ -17,6 +22,7 @@
 #include "io/FlightRecordFile.h"
 #include "io/ImageWriters.h"
 #include "io/SceneFile.h"
+#include "io/TileDirectory.h"
 #include "sim/KeyScript.h"
 
 #include <algorithm>
@@ -35,6 +41,7 @@ struct FlyOptions {
     TerrainArgs terrain;
     std::string scene, method = "mesh", record, replay, out, screenshot, video, size = "1280x720";
     long long frames = 0;
+    int cache_mib = 1024;
     std::vector<std::string> presses;
     double fov = 60;
     bool no_hud = false, hidden = false;
@@ -77,7 +84,7 @@ void encode_video(const std::string& dir, const std::string& video) {
     std::filesystem::rename(temp, video);
 }
 
-void run_replay(const FlyOptions& o, const DataSet& data) {
+void run_replay(const FlyOptions& o, const DataSet& data, const gl::FlightMethodFactory& factory) {
     if (o.out.empty()) throw Error("--out", "--replay needs --out DIR for the frames");
     int w = 0, h = 0;
     parse_size(o.size, w, h);
@@ -86,7 +93,7 @@ void run_replay(const FlyOptions& o, const DataSet& data) {
     long long index = 0;
     FlightRecord rendered;
     const gl::FlightMethodStats stats = gl::render_flight_record(
-        data, record, o.frames, o.method, w, h, o.fov, gl::make_flight_method, [&](const ColorImage& image, long long) {
+        data, record, o.frames, o.method, w, h, o.fov, factory, [&](const ColorImage& image, long long) {
             write_png((std::filesystem::path(o.out) / frame_name(index)).string(), image);
             rendered.frames.push_back(record.frames[std::size_t(index)]);
             ++index;
@@ -113,9 +120,20 @@ void run_fly(const FlyOptions& o) {
     std::vector<ScriptedPress> presses;
     for (const std::string& p : o.presses) presses.push_back(parse_press(p));
 
-    DataSet data = load_terrain(o.terrain);
+    if (o.cache_mib < 1 || o.cache_mib > (1 << 24)) throw Error("--cache-mib", "must be in 1..16777216 MiB");
+    gl::FlightMethodFactory factory = gl::make_flight_method;
+    if (is_tile_directory(o.terrain.terrain)) {
+        const std::string dir = o.terrain.terrain;
+        const std::size_t bound = std::size_t(o.cache_mib) << 20;
+        tile_directory_tiles(dir, bound); // a bad index fails here, before the window opens
+        factory = [dir, bound](const std::string& name, const DataSet& d) {
+            return name == "quadtree" ? gl::make_quadtree_flight_method(tile_directory_tiles(dir, bound))
+                                      : gl::make_flight_method(name, d);
+        };
+    }
+    DataSet data = load_terrain_lazily(o.terrain);
     if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
-    if (!o.replay.empty()) return run_replay(o, data);
+    if (!o.replay.empty()) return run_replay(o, data, factory);
 
     gl::FlightWindowOptions wo;
     parse_size(o.size, wo.width, wo.height);
@@ -142,7 +160,7 @@ void run_fly(const FlyOptions& o) {
         write_png(p.string(), image);
         std::fprintf(stderr, "overflight: saved %s\n", p.string().c_str());
     };
-    const gl::FlightResult result = gl::run_flight_window(data, wo, gl::make_flight_method, save);
+    const gl::FlightResult result = gl::run_flight_window(data, wo, factory, save);
     if (!o.record.empty()) write_flight_record(o.record, result.record);
     print_stats(result.per_method);
 }
@@ -170,6 +188,9 @@ void add_fly_command(CLI::App& app) {
     sub->add_option("--screenshot", o->screenshot, "With --frames: save the last frame as PNG");
     sub->add_option("--size", o->size, "Window / replay size WxH");
     sub->add_option("--fov", o->fov, "Horizontal field of view, degrees");
+    sub->add_option("--cache-mib", o->cache_mib,
+                    "quadtree over a tile directory: memory bound of the tile cache in MiB")
+        ->capture_default_str();
     sub->add_flag("--no-hud", o->no_hud, "Start with the HUD hidden (H toggles)");
     sub->add_flag("--hidden", o->hidden, "Do not show the window (unattended runs)");
     sub->callback([o] { run_fly(*o); });

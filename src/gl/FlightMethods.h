@@ -13,12 +13,14 @@
 //             frame with the vehicle as focus; + / _ scale the triangle budget
 //             by sqrt 2 (default 65536).
 //   quadtree  Röttger's quadtree over overlapping 257^2 tiles cut from the
-//             terrain (lod/TileSet, Zamri seed 001); + / _ divide / multiply the
-//             screen-space error by sqrt 2 (default 1 px).
+//             terrain, or over a tile directory's tiles (lod/TileSet, Zamri
+//             seed 001); + / _ divide / multiply the screen-space error by
+//             sqrt 2 (default 1 px).
 //
 // Each factory needs a current GL 4.5 context; `data` must outlive the method.
 #include "core/DataSet.h"
 #include "gl/FlightMethod.h"
+#include "lod/TileSet.h"
 
 #include <memory>
 #include <string>
@@ -30,6 +32,8 @@ std::unique_ptr<FlightMethod> make_mesh_flight_method(const DataSet& data);
 std::unique_ptr<FlightMethod> make_voxel_flight_method(const DataSet& data);
 std::unique_ptr<FlightMethod> make_roam_flight_method(const DataSet& data);
 std::unique_ptr<FlightMethod> make_quadtree_flight_method(const DataSet& data);
+// The quadtree over tiles from elsewhere (a tile directory read lazily: `fly DIR`).
+std::unique_ptr<FlightMethod> make_quadtree_flight_method(std::unique_ptr<TileSet> tiles);
 
 // "mesh", "voxel", "roam", "quadtree": the Tab order.
 const std::vector<std::string>& flight_method_names();

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -137,7 +138,8 @@ TEST(FlyWindow, BadOptionsAreOneLineErrors) {
                           Case{"--screenshot x.png", "--screenshot"},
                           Case{"--replay '" + (dir / "missing.csv") + "' --out '" + (dir / "o") + "'",
                                dir / "missing.csv"},
-                          Case{"--frames 5 --fov 60 --size 10", "--size"}}) {
+                          Case{"--frames 5 --fov 60 --size 10", "--size"},
+                          Case{"--frames 5 --cache-mib 0", "--cache-mib"}}) {
         SCOPED_TRACE(c.args);
         std::string args = std::string(kFly) + c.args;
         if (c.subject == "--size") args = "fly demo --demo-size 33 " + c.args; // kFly sets a size already
@@ -146,4 +148,46 @@ TEST(FlyWindow, BadOptionsAreOneLineErrors) {
         EXPECT_EQ(overflight::test::line_count(r.err), 1) << r.err;
         EXPECT_EQ(r.err.rfind("overflight: " + c.subject + ":", 0), 0u) << r.err;
     }
+}
+
+// A tile directory flies like any terrain: the quadtree reads its tiles
+// lazily within --cache-mib (a 1 MiB bound streams them and draws the same
+// image), the other methods and the vehicle use its overview (here the whole
+// terrain); a broken index fails before the window opens.
+TEST(FlyWindow, TileDirectoryFliesTheQuadtreeOverLazilyReadTiles) {
+    ScratchDir dir;
+    const std::string tiles = dir / "t";
+    ASSERT_EQ(run_overflight("tile demo --demo-size 257 --tile-size 33 -o '" + tiles + "'").exit_code, 0);
+    const std::string fly = "fly '" + tiles + "' --size 320x180 --frames 20 --press accelerate:0-20 ";
+    auto shot = [&](const std::string& args, const std::string& name) {
+        const auto r = run_overflight(fly + args + " --screenshot '" + (dir / name) + "'");
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return std::make_pair(read_png(dir / name), r.out);
+    };
+    const auto [streamed, streamed_out] = shot("--method quadtree --cache-mib 1", "q1.png");
+    const auto [cached, cached_out] = shot("--method quadtree", "q.png");
+    const auto [mesh, mesh_out] = shot("--method mesh", "m.png");
+    ASSERT_FALSE(streamed.rgb.empty());
+    EXPECT_EQ(streamed.rgb, cached.rgb);
+    // Fewer triangles than the full mesh (17642 against 131072 on 257^2).
+    const auto triangles = [](const std::string& out) {
+        const std::string row = out.substr(out.find('\n') + 1);
+        std::size_t at = 0;
+        for (int i = 0; i < 3; ++i) at = row.find(',', at) + 1;
+        return std::stol(row.substr(at));
+    };
+    EXPECT_LT(triangles(cached_out) * 4, triangles(mesh_out));
+    // At 1 px the quadtree's frame is the full mesh's but for shading along
+    // coarser triangles.
+    ASSERT_EQ(mesh.rgb.size(), cached.rgb.size());
+    long close = 0;
+    for (std::size_t i = 0; i < mesh.rgb.size(); ++i) close += std::abs(int(mesh.rgb[i]) - int(cached.rgb[i])) <= 24;
+    EXPECT_GT(double(close) / double(mesh.rgb.size()), 0.95);
+
+    std::filesystem::create_directories(dir / "bad");
+    std::ofstream(dir / "bad/index.json") << "{";
+    const auto bad = run_overflight("fly '" + (dir / "bad") + "' --method quadtree --frames 2");
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_EQ(overflight::test::line_count(bad.err), 1) << bad.err;
+    EXPECT_NE(bad.err.find("index.json"), std::string::npos) << bad.err;
 }
