@@ -1,11 +1,17 @@
 // Based on: Zamri, seed 001 ("Run-Time Processing"); Röttger et al. 1998.
 #include "QuadtreeMethod.h"
 
+#include "core/Error.h"
 #include "io/TileDirectory.h"
 
 #include <cstdio>
 
 namespace overflight::app {
+
+std::size_t tile_cache_bytes(int cache_mib) {
+    if (cache_mib < 1 || cache_mib > (1 << 24)) throw Error("--cache-mib", "must be in 1..16777216 MiB");
+    return std::size_t(cache_mib) << 20;
+}
 
 std::unique_ptr<TileSet> tile_directory_tiles(const std::string& tile_dir, std::size_t memory_bound) {
     const TileIndex index = read_tile_index(tile_dir);

@@ -16,6 +16,9 @@
 
 namespace overflight::app {
 
+// --cache-mib in bytes; throws Error("--cache-mib", ...) outside 1..2^24 MiB.
+std::size_t tile_cache_bytes(int cache_mib);
+
 // The tiles of a directory written by `overflight tile`, read lazily within
 // memory_bound bytes. Throws as read_tile_index.
 std::unique_ptr<TileSet> tile_directory_tiles(const std::string& tile_dir, std::size_t memory_bound);

@@ -34,7 +34,7 @@ void RenderSettings::validate() const {
     if (triangles < 2 || triangles > kRoamMaxTriangles)
         throw Error("--triangles", std::to_string(triangles) + " is outside 2.." + std::to_string(kRoamMaxTriangles));
     if (!(error_px >= 0.01 && error_px <= 1000.0)) throw Error("--error", "must be in 0.01..1000 pixels");
-    if (cache_mib < 1 || cache_mib > (1 << 24)) throw Error("--cache-mib", "must be in 1..16777216 MiB");
+    tile_cache_bytes(cache_mib);
 }
 
 void add_render_settings(CLI::App& cmd, RenderSettings& s) {
@@ -206,8 +206,8 @@ class QuadtreeRenderer : public ViewRenderer {
 public:
     explicit QuadtreeRenderer(RenderSession& s)
         : session_(s), quadtree_(s.tile_dir().empty()
-                                     ? QuadtreeMethod(s.data(), 257, std::size_t(s.settings().cache_mib) << 20)
-                                     : QuadtreeMethod(s.tile_dir(), std::size_t(s.settings().cache_mib) << 20)) {
+                                     ? QuadtreeMethod(s.data(), 257, tile_cache_bytes(s.settings().cache_mib))
+                                     : QuadtreeMethod(s.tile_dir(), tile_cache_bytes(s.settings().cache_mib))) {
         session_.gl();
     }
     void render(const Camera& camera, ColorImage& color, DepthImage& depth, nlohmann::json& stats) override {

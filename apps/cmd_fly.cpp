@@ -120,14 +120,12 @@ void run_fly(const FlyOptions& o) {
     std::vector<ScriptedPress> presses;
     for (const std::string& p : o.presses) presses.push_back(parse_press(p));
 
-    if (o.cache_mib < 1 || o.cache_mib > (1 << 24)) throw Error("--cache-mib", "must be in 1..16777216 MiB");
+    const std::size_t cache_bytes = tile_cache_bytes(o.cache_mib);
     gl::FlightMethodFactory factory = gl::make_flight_method;
     if (is_tile_directory(o.terrain.terrain)) {
         const std::string dir = o.terrain.terrain;
-        const std::size_t bound = std::size_t(o.cache_mib) << 20;
-        tile_directory_tiles(dir, bound); // a bad index fails here, before the window opens
-        factory = [dir, bound](const std::string& name, const DataSet& d) {
-            return name == "quadtree" ? gl::make_quadtree_flight_method(tile_directory_tiles(dir, bound))
+        factory = [dir, cache_bytes](const std::string& name, const DataSet& d) {
+            return name == "quadtree" ? gl::make_quadtree_flight_method(tile_directory_tiles(dir, cache_bytes))
                                       : gl::make_flight_method(name, d);
         };
     }
