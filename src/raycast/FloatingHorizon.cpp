@@ -44,6 +44,9 @@ constexpr float kRunSlack = 1.0f / 1048576.0f;
 // paints 1.3 rows on average on the bench view; measured there: 2 and 8 are
 // 5-10 % slower than 4.
 constexpr int kPaintRows = 4;
+// Fraction bits of the fixed-point row guess (SliceGuess): a raw height of
+// 2^16 times a rounding error of 2^-25 rows is under 1/512 row.
+constexpr int kGuessBits = 24;
 // Levels of the max-height pyramid (level L: 2^L samples square): a coarse run
 // of 32 slices spans 32 / cos(theta) samples, so 12 levels serve columns up to
 // 89 degrees off the view axis.
@@ -331,7 +334,13 @@ int FloatingHorizon::cast_column(int c, std::uint32_t* color, std::uint32_t* sli
 //   mispredicted at a high rate, each time once the sample's height load
 //   (often a cache miss) had come in. The color is read for every sample,
 //   not only for painting ones, so that its load starts with the height's
-//   rather than after it (measured: 12 % faster on the whole frame).
+//   rather than after it (measured: 12 % faster on the whole frame);
+// - RowSearch starts from a guess computed from the raw height in integer
+//   (SliceGuess) beside sigma rather than in float from sigma: the cast waits
+//   on the chain behind each height load (perf: the samples sit on the
+//   compares that consume it), and that moves five float operations off it
+//   (measured: cast 10-15 % faster on the bench view). The per-slice values
+//   it reads are one record, so that the loop keeps fewer pointers.
 template <std::ptrdiff_t kStride, bool kEvenRows>
 int FloatingHorizon::cast_blocks_column(int c, std::uint32_t* color, std::uint32_t* slice, long long& visited) const {
     const std::size_t cc = std::size_t(c);
@@ -354,6 +363,7 @@ int FloatingHorizon::cast_blocks_column(int c, std::uint32_t* color, std::uint32
     const float* smax = slice_smax_.data();
     const float* rows = row_m_.data();
     const RowSearch search(rows, kEvenRows ? nrows : 0);
+    const SliceGuess* guesses = slice_guess_.data();
     // The horizon is row j (m_j = rows[j]); mj is refreshed after each fine run
     // for the skip tests.
     int j = 0;
@@ -391,9 +401,12 @@ int FloatingHorizon::cast_blocks_column(int c, std::uint32_t* color, std::uint32
                 const std::size_t ci = std::size_t(gz >> 32) * cols + std::size_t(gx >> 32);
                 gx += sx;
                 gz += sz;
-                const float sigma = float(heights[ci]) * ma[k] + mb[k];
+                const std::uint16_t raw = heights[ci];
                 if constexpr (kEvenRows) {
-                    const int top = search.first_not_below(sigma);
+                    const SliceGuess& g = guesses[k];
+                    const float sigma = float(raw) * g.a + g.b;
+                    const std::int64_t guess = (std::int64_t(raw) * g.ga + g.gb) >> kGuessBits;
+                    const int top = search.first_not_below(sigma, int(std::clamp<std::int64_t>(guess, 0, nrows)));
                     const std::uint32_t col = colors[ci];
                     std::uint32_t* oc = color + std::ptrdiff_t(j) * kStride;
                     std::uint32_t* os = slice + std::ptrdiff_t(j) * kStride;
@@ -406,7 +419,7 @@ int FloatingHorizon::cast_blocks_column(int c, std::uint32_t* color, std::uint32
                         slice[std::ptrdiff_t(q) * kStride] = std::uint32_t(k);
                     }
                     j = std::max(j, top);
-                } else if (sigma > mj) {
+                } else if (const float sigma = float(raw) * ma[k] + mb[k]; sigma > mj) {
                     const std::uint32_t col = colors[ci];
                     do { // paint, move the horizon up one pixel (lines 10-14)
                         color[std::ptrdiff_t(j) * kStride] = col;
@@ -495,6 +508,23 @@ void FloatingHorizon::cast_shear(const Camera& camera, const RaycastOptions& opt
     row_m_.resize(std::size_t(H) + 1);
     for (int j = 0; j < H; ++j) row_m_[std::size_t(j)] = float((camera.v_of(H - 1 - j) + shift) / fp);
     row_m_[std::size_t(H)] = kInf;
+    // RowSearch's guess straight from the raw height (cast_blocks_column):
+    // its map from sigma folded into each slice's sigma = raw a_k + b_k, in
+    // fixed point. RowSearch corrects any guess to the exact row; this one is
+    // within a row. Saturated so that the sum cannot overflow (the guess is
+    // then merely far off, for absurd cameras).
+    const RowSearch search(row_m_.data(), H);
+    slice_guess_.resize(slice_d_.size());
+    const double one = double(std::int64_t(1) << kGuessBits);
+    for (std::size_t k = 0; k < slice_d_.size(); ++k) {
+        const double a = double(slice_a_[k]) * search.inv_step();
+        const double b = (double(slice_b_[k]) - search.m0()) * search.inv_step() + 1.0;
+        SliceGuess& g = slice_guess_[k];
+        g.ga = std::llround(std::clamp(a, -0x1p20, 0x1p20) * one);
+        g.gb = std::llround(std::clamp(b, -0x1p36, 0x1p36) * one);
+        g.a = slice_a_[k];
+        g.b = slice_b_[k];
+    }
     const double a_edge = (W * 0.5) / fp;
     const double m_edge = std::max(std::abs(row_m_[0]), std::abs(row_m_[std::size_t(H) - 1]));
     fog_.build(env_.fog_density, float(camera.far * std::sqrt(1.0 + a_edge * a_edge + m_edge * m_edge) * 1.001));

@@ -106,6 +106,12 @@ private:
     std::vector<float> slice_a_;       // v_scale / d_k
     std::vector<float> slice_b_;       // (y0 - eye_y) / d_k
     std::vector<float> slice_smax_;    // max over k' >= k of (max height - eye_y) / d_k'
+    // Shear: what cast_blocks_column reads per slice, in one record.
+    struct SliceGuess {
+        std::int64_t ga, gb; // (raw ga + gb) >> kGuessBits: RowSearch's guess of the row a sample reaches
+        float a, b;          // slice_a_, slice_b_: sigma = raw a + b
+    };
+    std::vector<SliceGuess> slice_guess_;
     std::vector<float> slice_depth_;   // window depth of slice k (shear)
     std::vector<std::uint8_t> slice_level_; // LOD level of slice k
     float max_height_ = 0;             // world, over all samples

@@ -13,6 +13,8 @@
 // the guess is then corrected against the table itself, so the result is
 // exact for any non-decreasing table (the tilt camera's rows are not evenly
 // spaced: the correction then takes more steps, never a different answer).
+// A caller that can guess sooner (from what sigma is computed from) passes its
+// own guess; the correction is the same.
 #include <algorithm>
 
 namespace overflight {
@@ -31,11 +33,19 @@ public:
         // The guess ceil((sigma - m_0) / step), clamped to [0, n] (t >= -1, so
         // the truncation is a floor).
         const float t = std::min(std::max((sigma - m0_) * inv_step_, -1.0f), float(n_));
-        int e = std::min(int(t + 1.0f), n_);
+        return first_not_below(sigma, std::min(int(t + 1.0f), n_));
+    }
+    // The same from any guess in [0, n]; the closer, the fewer steps.
+    int first_not_below(float sigma, int guess) const {
+        int e = guess;
         while (e > 0 && rows_[e - 1] >= sigma) --e;
         while (rows_[e] < sigma) ++e; // stops at the sentinel
         return e;
     }
+
+    // The guess above is 1 + (sigma - m0()) * inv_step(), rounded down.
+    float m0() const { return m0_; }
+    float inv_step() const { return inv_step_; }
 
 private:
     const float* rows_;

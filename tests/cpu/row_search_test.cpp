@@ -28,6 +28,9 @@ void expect_lower_bound(const std::vector<float>& rows, float sigma) {
     const RowSearch search(rows.data(), n);
     const int want = int(std::lower_bound(rows.begin(), rows.begin() + n, sigma) - rows.begin());
     ASSERT_EQ(search.first_not_below(sigma), want) << "sigma " << sigma << " n " << n;
+    // From the caller's own guess, whatever it is.
+    for (int guess : {0, n / 3, n, std::clamp(want - 1, 0, n), std::clamp(want + 1, 0, n)})
+        ASSERT_EQ(search.first_not_below(sigma, guess), want) << "sigma " << sigma << " n " << n << " guess " << guess;
 }
 
 // Slopes of a shear camera's rows, bottom-up, as FloatingHorizon::cast_shear makes them.
