@@ -22,9 +22,11 @@
 // near the eye, where a cell spans several pixels, block fronts and corners
 // can be missed; RaycastOptions::near_step_pixels narrows the slices there.
 //
-// Speed: columns are cast in blocks in parallel (oneTBB). Within a column,
-// runs of slices that the max-height pyramid bounds below the current horizon
-// are skipped (SliceRunBound: exact, they would paint nothing). Each block is
+// Speed: columns are cast in blocks in parallel (oneTBB); the columns of a
+// block take turns, a run of slices each, so that neighbours share terrain
+// cache lines. Within a column, runs of slices that the max-height pyramid
+// bounds below the current horizon are skipped (SliceRunBound: exact, they
+// would paint nothing). Each block is
 // cast into a per-thread scratch, row-major within the block, and resolved
 // (fog, sky, depth: ShearResolve) into the row-major images, one run of pixels
 // per image row; every per-frame table and scratch buffer is reused across
@@ -84,10 +86,13 @@ private:
     // samples visited.
     long long cast_columns(const RaycastOptions& options, int c0, int c1, std::uint32_t* color, std::uint32_t* slice,
                            int* jend, std::ptrdiff_t col_stride, std::ptrdiff_t row_stride) const;
-    // kStride: row stride of the output; kEvenRows: the rows are evenly
-    // spaced in slope (shear) and the output has kPaintRows rows of padding.
+    // cast_columns for one-cell slices and the `blocks` surface, at most
+    // kShearBlock columns. kStride: row stride of the output; kEvenRows: the
+    // rows are evenly spaced in slope (shear) and the output has kPaintRows
+    // rows of padding.
     template <std::ptrdiff_t kStride, bool kEvenRows>
-    int cast_blocks_column(int c, std::uint32_t* color, std::uint32_t* slice, long long& visited) const;
+    long long cast_blocks(int c0, int c1, std::uint32_t* color, std::uint32_t* slice, int* jend,
+                          std::ptrdiff_t col_stride) const;
     template <bool kBilinear, bool kVarying>
     int cast_column(int c, std::uint32_t* color, std::uint32_t* slice, std::ptrdiff_t stride, long long& visited) const;
 

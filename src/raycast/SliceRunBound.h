@@ -32,6 +32,7 @@ public:
     // A run of `run` slices with a step of (sx, sz) samples per slice in 32.32
     // fixed point. Not usable() when the pyramid has no level that coarse, or
     // for runs shorter than 2 slices.
+    SliceRunBound() = default; // not usable()
     SliceRunBound(const HeightPyramid& pyramid, int run, std::int64_t sx, std::int64_t sz,
                   Footprint footprint = Footprint::Nearest)
         : run_(run), dx_(std::int64_t(run - 1) * sx), dz_(std::int64_t(run - 1) * sz) {
@@ -83,8 +84,8 @@ private:
         return std::size_t(std::clamp<std::int64_t>(v >> level_, 0, std::int64_t(n) - 1));
     }
 
-    int run_;
-    std::int64_t dx_, dz_;     // from the run's first sample to its last
+    int run_ = 0;
+    std::int64_t dx_ = 0, dz_ = 0; // from the run's first sample to its last
     int below_ = 0, above_ = 0; // samples read beyond the positions' box
     std::int64_t last_x_ = 0, last_z_ = 0; // the grid's last sample (Bilinear)
     int level_ = 1;
