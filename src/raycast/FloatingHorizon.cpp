@@ -498,6 +498,7 @@ long long FloatingHorizon::cast_blocks(int c0, int c1, std::uint32_t* color, std
 long long FloatingHorizon::cast_columns(const RaycastOptions& options, int c0, int c1, std::uint32_t* color,
                                         std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride,
                                         std::ptrdiff_t row_stride) const {
+    if (c1 - c0 > kBlock) throw std::logic_error("FloatingHorizon: more columns than one block");
     const bool bil = options.surface == SurfaceModel::Bilinear;
     if (uniform_slices_ && !bil) {
         if (row_stride == kBlock && rows_even_) return cast_blocks<kBlock, true>(c0, c1, color, slice, jend, col_stride);

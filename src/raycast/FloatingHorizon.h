@@ -80,7 +80,8 @@ private:
                          RaycastStats& stats);
     void cast_tilt_guedes(const Camera& camera, const RaycastOptions& options, ColorImage& color, DepthImage& depth,
                           RaycastStats& stats);
-    // Casts columns [c0, c1): pixel (row j, column c) of the unfogged sample
+    // Casts columns [c0, c1), at most kShearBlock of them (one block; throws
+    // std::logic_error otherwise): pixel (row j, column c) of the unfogged sample
     // color and of the slice index go to color/slice[(c - c0) * col_stride +
     // j * row_stride]; jend[c - c0] receives the painted count. Returns the
     // samples visited.
