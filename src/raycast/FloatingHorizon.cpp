@@ -150,7 +150,10 @@ void FloatingHorizon::setup_slices(const Camera& camera, const RaycastOptions& o
     }
     const std::size_t n = slice_d_.size();
     slice_df_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) slice_df_[k] = float(slice_d_[k]);
+    // Evenly spaced: in float as d_first + step k, which the shear resolve may
+    // compute rather than read (ShearResolveTables::d_step).
+    for (std::size_t k = 0; k < n; ++k)
+        slice_df_[k] = uniform_slices_ ? float(d_first) + float(hs) * float(k) : float(slice_d_[k]);
     slice_a_.resize(n);
     slice_b_.resize(n);
     slice_smax_.resize(n);
@@ -590,8 +593,11 @@ void FloatingHorizon::cast_shear(const Camera& camera, const RaycastOptions& opt
     stats.columns = W;
 
     t0 = Clock::now();
-    const ShearResolveTables tables{row_m_.data(), slice_depth_.data(), slice_df_.data(), &fog_, fog_color_,
-                                    sky_.entries()};
+    ShearResolveTables tables{row_m_.data(), slice_depth_.data(), slice_df_.data(), &fog_, fog_color_, sky_.entries()};
+    if (uniform_slices_) {
+        tables.d_first = slice_df_[0];
+        tables.d_step = float(terrain_.h_scale());
+    }
     const int blocks = (W + kBlock - 1) / kBlock;
     std::atomic<long long> visited{0}, painted{0};
     // Thread time of each step, summed over the blocks (nanoseconds).

@@ -23,6 +23,22 @@ namespace {
 // every run waits for its lines (measured: 15-20 % of the resolve).
 constexpr int kWritePrefetchRows = 8;
 
+// Prefetches for writing the run of n pixels of image row `row` (color and depth).
+void prefetch_run(const Rgb8* out_c, const float* out_d, std::size_t row, int n) {
+    const char* pc = reinterpret_cast<const char*>(out_c + row);
+    const char* pd = reinterpret_cast<const char*>(out_d + row);
+    for (int b = 0; b < n * 3; b += 64) __builtin_prefetch(pc + b, 1);
+    __builtin_prefetch(pc + n * 3 - 1, 1);
+    for (int b = 0; b < n * 4; b += 64) __builtin_prefetch(pd + b, 1);
+    __builtin_prefetch(pd + n * 4 - 1, 1);
+}
+
+// The image row of block row j (bottom-up), prefetching the one kWritePrefetchRows above.
+std::size_t image_row(const ShearBlock& blk, int H, int j, std::size_t W, const Rgb8* out_c, const float* out_d) {
+    if (j + kWritePrefetchRows < H) prefetch_run(out_c, out_d, std::size_t(H - 1 - j - kWritePrefetchRows) * W, blk.n);
+    return std::size_t(H - 1 - j) * W;
+}
+
 // out[i] = sqrt(len2[i] + m2), the ray length per unit of view depth, for
 // every lane. std::sqrt would keep the loop that uses it from vectorising (it
 // may set errno); these sums are >= 1.
@@ -35,21 +51,49 @@ void ray_lengths(const float* len2, float m2, float* out) {
 #endif
 }
 
+// Writes 4 packed 0x00BBGGRR colors as 12 bytes of Rgb8.
+void store_rgb4(const std::uint32_t* p, Rgb8* out) {
+    if constexpr (std::endian::native == std::endian::little) {
+        // Three words, each stored directly: one 12-byte copy through a stack
+        // array would defeat store forwarding.
+        const std::uint32_t w0 = p[0] | (p[1] << 24), w1 = (p[1] >> 8) | (p[2] << 16), w2 = (p[2] >> 16) | (p[3] << 8);
+        unsigned char* o = reinterpret_cast<unsigned char*>(out);
+        std::memcpy(o, &w0, 4);
+        std::memcpy(o + 4, &w1, 4);
+        std::memcpy(o + 8, &w2, 4);
+    } else {
+        for (int i = 0; i < 4; ++i) out[i] = unpack_rgb(p[i]);
+    }
+}
+
+// Writes the first n of a row's kShearBlock resolved pixels.
+void write_run(const std::uint32_t* px, const float* z, int n, Rgb8* oc, float* od) {
+    if (n == kShearBlock) {
+        for (int i = 0; i < kShearBlock; i += 4) store_rgb4(px + i, oc + i);
+    } else {
+        for (int i = 0; i < n; ++i) oc[i] = unpack_rgb(px[i]);
+    }
+    std::memcpy(od, z, sizeof(float) * std::size_t(n));
+}
+
 // Rows [j0, j1). kTerrain / kSky: whether the rows have terrain / sky lanes;
 // with both, lane i is terrain below jend[i]. The lanes are independent; GCC
 // 12 vectorises the sky loop but not the fog loop for generic x86-64 (it
 // would need gathers), hence resolve_rows_avx2.
 template <bool kTerrain, bool kSky>
-void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, int j0, int j1, std::uint32_t* color,
-                           std::uint32_t* slice) {
+void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, int H, int j0, int j1,
+                           const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                           std::size_t W) {
     const std::uint32_t* fog = t.fog->entries();
     const float fog_step = t.fog->inv_step();
     for (int j = j0; j < j1; ++j) {
         const float m = t.row_m[j];
-        std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
-        std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
+        const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
+        const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
         alignas(64) float lens[kShearBlock];
         alignas(64) std::uint32_t skies[kShearBlock] = {};
+        alignas(64) std::uint32_t px[kShearBlock];
+        alignas(64) float zs[kShearBlock];
         ray_lengths(blk.len2, m * m, lens);
         if constexpr (kSky)
             for (int i = 0; i < kShearBlock; ++i) skies[i] = SkyTable::lookup(t.sky, m / lens[i]);
@@ -67,38 +111,52 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
                 const int w = std::min(int(t.slice_d[k] * len * fog_step + 0.5f), FogTable::kEntries);
                 fogged = fog_blend(sc[i], t.fog_color, fog[w]);
             }
-            sc[i] = terrain ? fogged : skies[i];
-            ss[i] = std::bit_cast<std::uint32_t>(terrain ? z : 1.0f);
+            px[i] = terrain ? fogged : skies[i];
+            zs[i] = terrain ? z : 1.0f;
         }
+        const std::size_t row = image_row(blk, H, j, W, out_c, out_d);
+        write_run(px, zs, blk.n, out_c + row, out_d + row);
     }
 }
 
 #if OVERFLIGHT_RESOLVE_AVX2
 // resolve_rows_portable with AVX2 gathers (GCC does not emit them for generic
 // x86-64 tuning): the same operations in the same order, so the same bits.
-template <bool kTerrain, bool kSky>
-__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const ShearBlock& blk, int j0,
-                                                       int j1, std::uint32_t* color, std::uint32_t* slice) {
+// kEven: the slices are evenly spaced (ShearResolveTables::d_step), so the
+// view depth is computed rather than gathered. A full block's pixels go to
+// the images straight from the registers.
+template <bool kTerrain, bool kSky, bool kEven>
+__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const ShearBlock& blk, int H,
+                                                       int j0, int j1, const std::uint32_t* color,
+                                                       const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                                                       std::size_t W) {
     const int* fog = reinterpret_cast<const int*>(t.fog->entries());
     const int* sky_table = reinterpret_cast<const int*>(t.sky);
     const __m256 fog_step = _mm256_set1_ps(t.fog->inv_step());
     const __m256 half = _mm256_set1_ps(0.5f), sky_scale = _mm256_set1_ps(float(SkyTable::kEntries - 1));
     const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
     const __m256i fog_last = _mm256_set1_epi32(FogTable::kEntries), sky_last = _mm256_set1_epi32(SkyTable::kEntries - 1);
     const __m256i zero = _mm256_setzero_si256(), full = _mm256_set1_epi32(256);
     const __m256i mask_rb = _mm256_set1_epi32(0xFF00FF), mask_g = _mm256_set1_epi32(0x00FF00);
     const __m256i fog_rb = _mm256_set1_epi32(int(t.fog_color & 0xFF00FFu));
     const __m256i fog_g = _mm256_set1_epi32(int(t.fog_color & 0x00FF00u));
     const __m256i round_rb = _mm256_set1_epi32(0x800080), round_g = _mm256_set1_epi32(0x008000);
+    // 8 packed colors to 24 bytes of Rgb8: 12 bytes per 128-bit lane, then the lanes joined.
+    const __m256i rgb_bytes = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
+                                               0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+    const __m256i rgb_join = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7);
+    const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
         const float mj = t.row_m[j];
         const __m256 m = _mm256_set1_ps(mj), m2 = _mm256_set1_ps(mj * mj);
         const __m256i jv = _mm256_set1_epi32(j);
-        std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
-        std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
+        const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
+        const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
+        const std::size_t row = image_row(blk, H, j, W, out_c, out_d);
+        alignas(32) std::uint32_t px[kShearBlock];
+        alignas(32) float zs[kShearBlock];
         for (int i = 0; i < kShearBlock; i += 8) {
-            auto* vc = reinterpret_cast<__m256i*>(sc + i);
-            auto* vs = reinterpret_cast<__m256i*>(ss + i);
             const __m256 len = _mm256_sqrt_ps(_mm256_add_ps(_mm256_loadu_ps(blk.len2 + i), m2));
             const __m256i terrain =
                 kTerrain && kSky
@@ -107,13 +165,14 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
             __m256i fogged = zero, sky = zero;
             __m256 z = one;
             if constexpr (kTerrain) {
-                const __m256i k = _mm256_and_si256(_mm256_loadu_si256(vs), terrain);
+                const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
                 z = _mm256_i32gather_ps(t.slice_depth, k, 4);
-                const __m256 d = _mm256_i32gather_ps(t.slice_d, k, 4);
+                const __m256 d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
+                                       : _mm256_i32gather_ps(t.slice_d, k, 4);
                 const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), fog_step), half);
                 const __m256i a = _mm256_i32gather_epi32(fog, _mm256_min_epi32(_mm256_cvttps_epi32(x), fog_last), 4);
                 const __m256i b = _mm256_sub_epi32(full, a);
-                const __m256i c = _mm256_loadu_si256(vc);
+                const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
                 // fog_blend, lane by lane.
                 const __m256i rb = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_and_si256(c, mask_rb), a),
                                                     _mm256_add_epi32(_mm256_mullo_epi32(fog_rb, b), round_rb));
@@ -127,27 +186,30 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
                 const __m256i e = _mm256_max_epi32(_mm256_min_epi32(_mm256_cvttps_epi32(x), sky_last), zero);
                 sky = _mm256_i32gather_epi32(sky_table, e, 4);
             }
-            _mm256_storeu_si256(vc, _mm256_blendv_epi8(sky, fogged, terrain));
-            _mm256_storeu_ps(reinterpret_cast<float*>(vs), _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain)));
+            const __m256i pixel = _mm256_blendv_epi8(sky, fogged, terrain);
+            const __m256 depth = _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain));
+            if (direct) {
+                const __m256i rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(pixel, rgb_bytes), rgb_join);
+                char* oc = reinterpret_cast<char*>(out_c + row + std::size_t(i));
+                // 32 bytes hold these 24 and the next 8 pixels' first 8, which
+                // the next store overwrites; the last 8 pixels store exactly 24
+                // (the next block's pixels may be another thread's).
+                if (i + 8 < kShearBlock) {
+                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(oc), rgb);
+                } else {
+                    _mm_storeu_si128(reinterpret_cast<__m128i*>(oc), _mm256_castsi256_si128(rgb));
+                    _mm_storel_epi64(reinterpret_cast<__m128i*>(oc + 16), _mm256_extracti128_si256(rgb, 1));
+                }
+                _mm256_storeu_ps(out_d + row + std::size_t(i), depth);
+            } else {
+                _mm256_store_si256(reinterpret_cast<__m256i*>(px + i), pixel);
+                _mm256_store_ps(zs + i, depth);
+            }
         }
+        if (!direct) write_run(px, zs, blk.n, out_c + row, out_d + row);
     }
 }
 #endif
-
-// Writes 4 packed 0x00BBGGRR colors as 12 bytes of Rgb8.
-void store_rgb4(const std::uint32_t* p, Rgb8* out) {
-    if constexpr (std::endian::native == std::endian::little) {
-        // Three words, each stored directly: one 12-byte copy through a stack
-        // array would defeat store forwarding.
-        const std::uint32_t w0 = p[0] | (p[1] << 24), w1 = (p[1] >> 8) | (p[2] << 16), w2 = (p[2] >> 16) | (p[3] << 8);
-        unsigned char* o = reinterpret_cast<unsigned char*>(out);
-        std::memcpy(o, &w0, 4);
-        std::memcpy(o + 4, &w1, 4);
-        std::memcpy(o + 8, &w2, 4);
-    } else {
-        for (int i = 0; i < 4; ++i) out[i] = unpack_rgb(p[i]);
-    }
-}
 
 } // namespace
 
@@ -165,8 +227,8 @@ bool resolve_kernel_available(ResolveKernel kernel) {
     return false;
 }
 
-void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int H, std::uint32_t* color,
-                         std::uint32_t* slice, Rgb8* out_c, float* out_d, std::size_t W, ResolveKernel kernel) {
+void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int H, const std::uint32_t* color,
+                         const std::uint32_t* slice, Rgb8* out_c, float* out_d, std::size_t W, ResolveKernel kernel) {
     // Rows below every column's horizon are all terrain, rows above all sky.
     int jmin = H, jmax = 0;
     for (int i = 0; i < kShearBlock; ++i) {
@@ -177,42 +239,20 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     if (kernel == ResolveKernel::Auto) kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
 #if OVERFLIGHT_RESOLVE_AVX2
     if (kernel == ResolveKernel::Avx2) {
-        resolve_rows_avx2<true, false>(t, blk, 0, jmin, color, slice);
-        resolve_rows_avx2<true, true>(t, blk, jmin, jmax, color, slice);
-        resolve_rows_avx2<false, true>(t, blk, jmax, H, color, slice);
-    } else
-#endif
-    {
-        resolve_rows_portable<true, false>(t, blk, 0, jmin, color, slice);
-        resolve_rows_portable<true, true>(t, blk, jmin, jmax, color, slice);
-        resolve_rows_portable<false, true>(t, blk, jmax, H, color, slice);
-    }
-
-    // Written in a pass of its own: the stores miss (fresh image lines) and
-    // would stall the computation above.
-    for (int j = 0; j < H; ++j) {
-        if (j + kWritePrefetchRows < H) {
-            const std::size_t ahead = std::size_t(H - 1 - j - kWritePrefetchRows) * W;
-            const char* pc = reinterpret_cast<const char*>(out_c + ahead);
-            const char* pd = reinterpret_cast<const char*>(out_d + ahead);
-            for (int b = 0; b < blk.n * 3; b += 64) __builtin_prefetch(pc + b, 1);
-            __builtin_prefetch(pc + blk.n * 3 - 1, 1);
-            for (int b = 0; b < blk.n * 4; b += 64) __builtin_prefetch(pd + b, 1);
-            __builtin_prefetch(pd + blk.n * 4 - 1, 1);
-        }
-        const std::uint32_t* px = color + std::size_t(j) * kShearBlock;
-        const std::uint32_t* dp = slice + std::size_t(j) * kShearBlock;
-        const std::size_t row = std::size_t(H - 1 - j) * W;
-        Rgb8* oc = out_c + row;
-        float* od = out_d + row;
-        if (blk.n == kShearBlock) {
-            for (int i = 0; i < kShearBlock; i += 4) store_rgb4(px + i, oc + i);
-            std::memcpy(od, dp, sizeof(float) * kShearBlock);
+        if (t.d_step > 0.0f) {
+            resolve_rows_avx2<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+            resolve_rows_avx2<true, true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         } else {
-            for (int i = 0; i < blk.n; ++i) oc[i] = unpack_rgb(px[i]);
-            std::memcpy(od, dp, sizeof(float) * std::size_t(blk.n));
+            resolve_rows_avx2<true, false, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+            resolve_rows_avx2<true, true, false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         }
+        resolve_rows_avx2<false, true, false>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+        return;
     }
+#endif
+    resolve_rows_portable<true, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+    resolve_rows_portable<true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    resolve_rows_portable<false, true>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
 }
 
 } // namespace overflight

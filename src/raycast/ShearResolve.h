@@ -30,6 +30,10 @@ struct ShearResolveTables {
     const FogTable* fog = nullptr;
     std::uint32_t fog_color = 0;        // 0x00BBGGRR
     const std::uint32_t* sky = nullptr; // SkyTable::entries()
+    // Evenly spaced slices (d_step > 0): slice_d[k] is d_first + d_step * k,
+    // computed in float in that order, so a kernel may compute it rather than
+    // read it. 0: read slice_d.
+    float d_first = 0.0f, d_step = 0.0f;
 };
 
 // One block as the cast left it.
@@ -51,10 +55,10 @@ bool resolve_kernel_available(ResolveKernel kernel);
 // anything. Pixel j < jend[i] gets the color fogged at the eye distance
 // d_k |ray_j| and depth slice_depth[k]; the others get the sky color of their
 // ray's elevation and depth 1. The results are written to out_c/out_d (the
-// images at the block's first column, W pixels per row); color and slice are
-// overwritten on the way (final color, depth bits).
-void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int H, std::uint32_t* color,
-                         std::uint32_t* slice, Rgb8* out_c, float* out_d, std::size_t W,
+// images at the block's first column, W pixels per row), blk.n pixels per
+// row and no more.
+void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int H, const std::uint32_t* color,
+                         const std::uint32_t* slice, Rgb8* out_c, float* out_d, std::size_t W,
                          ResolveKernel kernel = ResolveKernel::Auto);
 
 } // namespace overflight

@@ -144,36 +144,47 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
     fog.build(0.002f, d.back() * 2.0f);
     SkyTable sky;
     sky.build(env);
-    const ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0x9AB0C8u, sky.entries()};
-    for (int n : {kShearBlock, 7}) {
-        std::vector<int> jend(kShearBlock, 0);
-        std::vector<float> len2(kShearBlock, 1.0f);
-        for (int i = 0; i < n; ++i) {
-            jend[std::size_t(i)] = int(unit(rng) * float(H + 1)) % (H + 1);
-            len2[std::size_t(i)] = 1.0f + unit(rng);
+    // The view depths read from the table, and computed (d[k] = 1 + 3 k in float).
+    ShearResolveTables read{rows.data(), depth.data(), d.data(), &fog, 0x9AB0C8u, sky.entries()};
+    ShearResolveTables even = read;
+    even.d_first = 1.0f;
+    even.d_step = 3.0f;
+    for (const ShearResolveTables& t : {read, even}) {
+        for (int n : {kShearBlock, 7}) {
+            std::vector<int> jend(kShearBlock, 0);
+            std::vector<float> len2(kShearBlock, 1.0f);
+            for (int i = 0; i < n; ++i) {
+                jend[std::size_t(i)] = int(unit(rng) * float(H + 1)) % (H + 1);
+                len2[std::size_t(i)] = 1.0f + unit(rng);
+            }
+            jend[0] = H; // a full column and an empty one
+            jend[1] = 0;
+            Scratch s(H);
+            for (int j = 0; j < H; ++j)
+                for (int i = 0; i < kShearBlock; ++i)
+                    s.set(j, i, std::uint32_t(rng()) & 0xFFFFFFu, j < jend[std::size_t(i)] ? std::uint32_t(rng() % S) : rng());
+            ColorImage c1, c2;
+            DepthImage z1, z2;
+            for (ColorImage* c : {&c1, &c2}) c->resize(W, H);
+            for (DepthImage* z : {&z1, &z2}) z->resize(W, H);
+            const Rgb8 untouched{7, 7, 7};
+            for (ColorImage* c : {&c1, &c2}) std::fill(c->pixels.begin(), c->pixels.end(), untouched);
+            for (DepthImage* z : {&z1, &z2}) std::fill(z->pixels.begin(), z->pixels.end(), -1.0f);
+            const ShearBlock blk = block(n, jend, len2);
+            resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c1.pixels.data() + 3, z1.pixels.data() + 3,
+                                std::size_t(W), ResolveKernel::Portable);
+            resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c2.pixels.data() + 3, z2.pixels.data() + 3,
+                                std::size_t(W), ResolveKernel::Avx2);
+            for (int r = 0; r < H; ++r) // nothing written beside the block's n columns
+                for (int c : {2, 3 + n}) {
+                    ASSERT_EQ(c2.at(c, r), untouched) << "n " << n << " column " << c << " row " << r;
+                    ASSERT_EQ(z2.at(c, r), -1.0f) << "n " << n << " column " << c << " row " << r;
+                }
+            EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8))) << "n " << n;
+            EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float))) << "n " << n;
+            long long terrain = 0;
+            for (float v : z1.pixels) terrain += v >= 0.0f && v < 1.0f;
+            EXPECT_GT(terrain, 0);
         }
-        jend[0] = H; // a full column and an empty one
-        jend[1] = 0;
-        Scratch s(H);
-        for (int j = 0; j < H; ++j)
-            for (int i = 0; i < kShearBlock; ++i)
-                s.set(j, i, std::uint32_t(rng()) & 0xFFFFFFu, j < jend[std::size_t(i)] ? std::uint32_t(rng() % S) : rng());
-        Scratch s2 = s;
-        ColorImage c1, c2;
-        DepthImage z1, z2;
-        c1.resize(W, H);
-        c2.resize(W, H);
-        z1.resize(W, H);
-        z2.resize(W, H);
-        const ShearBlock blk = block(n, jend, len2);
-        resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c1.pixels.data() + 3, z1.pixels.data() + 3,
-                            std::size_t(W), ResolveKernel::Portable);
-        resolve_shear_block(t, blk, H, s2.color.data(), s2.slice.data(), c2.pixels.data() + 3, z2.pixels.data() + 3,
-                            std::size_t(W), ResolveKernel::Avx2);
-        EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8))) << "n " << n;
-        EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float))) << "n " << n;
-        long long terrain = 0;
-        for (float v : z1.pixels) terrain += v < 1.0f;
-        EXPECT_GT(terrain, 0);
     }
 }
