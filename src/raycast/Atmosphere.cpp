@@ -33,6 +33,10 @@ Rgb8 apply_fog(const Environment& env, Rgb8 surface, double f) {
 }
 
 void FogTable::build(float density, float max_distance) {
+    // A flight or a benchmark asks for the same table every frame.
+    if (!table_.empty() && density == density_ && max_distance == max_distance_) return;
+    density_ = density;
+    max_distance_ = max_distance;
     enabled_ = density > 0.0f && max_distance > 0.0f;
     table_.resize(std::size_t(kEntries) + 1);
     if (!enabled_) {
@@ -47,6 +51,9 @@ void FogTable::build(float density, float max_distance) {
 }
 
 void SkyTable::build(const Environment& env) {
+    if (!table_.empty() && env.sky_horizon == horizon_ && env.sky_zenith == zenith_) return;
+    horizon_ = env.sky_horizon;
+    zenith_ = env.sky_zenith;
     table_.resize(kEntries);
     for (int i = 0; i < kEntries; ++i) table_[std::size_t(i)] = pack_rgb(sky_color_from_sine(env, double(i) / (kEntries - 1)));
 }

@@ -49,6 +49,7 @@ Rgb8 apply_fog(const Environment& env, Rgb8 surface, double f);
 // vectorised loop can gather them.
 class FogTable {
 public:
+    // Rebuilds only when density or max_distance changed.
     void build(float density, float max_distance);
     bool enabled() const { return enabled_; }
     // Blend weight of the surface color, 0..256, for a distance >= 0 (past max_distance clamps).
@@ -66,6 +67,7 @@ public:
 
 private:
     bool enabled_ = false;
+    float density_ = 0.0f, max_distance_ = 0.0f; // what the table was built for
     float inv_step_ = 0.0f;
     std::vector<std::uint32_t> table_;
 };
@@ -74,6 +76,7 @@ private:
 // nearest entry (kEntries levels: finer than the 8-bit color steps).
 class SkyTable {
 public:
+    // Rebuilds only when the environment's sky colors changed.
     void build(const Environment& env);
     // Sky color for the sine of a ray's elevation. Converted before it is
     // clamped (|sine| <= 1 keeps the conversion in range), so that loops over
@@ -88,6 +91,7 @@ public:
     static constexpr int kEntries = 1024;
 
 private:
+    glm::vec3 horizon_{0.0f}, zenith_{0.0f}; // what the table was built for
     std::vector<std::uint32_t> table_;
 };
 
