@@ -48,6 +48,9 @@
 
 namespace overflight {
 
+// Whether this build and CPU can run the block cast compiled for `kernel`.
+bool cast_kernel_available(CastKernel kernel);
+
 class FloatingHorizon {
 public:
     // Keeps references to terrain and env (they must outlive this object).
@@ -87,6 +90,12 @@ private:
     // samples visited.
     long long cast_columns(const RaycastOptions& options, int c0, int c1, std::uint32_t* color, std::uint32_t* slice,
                            int* jend, std::ptrdiff_t col_stride, std::ptrdiff_t row_stride) const;
+    // cast_columns for one CastKernel: the body, compiled for x86-64-v3 in _v3.
+    long long cast_columns_body(const RaycastOptions& options, int c0, int c1, std::uint32_t* color,
+                                std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride,
+                                std::ptrdiff_t row_stride) const;
+    long long cast_columns_v3(const RaycastOptions& options, int c0, int c1, std::uint32_t* color, std::uint32_t* slice,
+                              int* jend, std::ptrdiff_t col_stride, std::ptrdiff_t row_stride) const;
     // cast_columns for one-cell slices and the `blocks` surface, at most
     // kShearBlock columns. kStride: row stride of the output; kEvenRows: the
     // rows are evenly spaced in slope (shear) and the output has kPaintRows

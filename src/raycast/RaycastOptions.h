@@ -19,6 +19,11 @@ enum class SurfaceModel { Blocks, Bilinear };
 //            (seed 002, Algorithm 1): each column is one vertical plane.
 enum class TiltMethod { Exact, Guedes };
 
+// The instruction set the Floating Horizon's block cast is compiled for. Auto
+// picks X86_64_v3 where the CPU has it; both paint the same pixels (the
+// others are for tests and measurements, when cast_kernel_available()).
+enum class CastKernel { Auto, Portable, X86_64_v3 };
+
 const char* to_string(SurfaceModel s);
 const char* to_string(TiltMethod t);
 // Parse a name ("blocks", "bilinear", "exact", "guedes"); throw Error(option, ...) otherwise.
@@ -42,6 +47,7 @@ struct RaycastOptions {
     // stay below the current horizon (one-cell slices, `blocks` surface). Exact:
     // such runs paint nothing; off only to measure or test that.
     bool skip_runs = true;
+    CastKernel kernel = CastKernel::Auto;
 };
 
 // What one frame cost, for --stats and `overflight bench`.
