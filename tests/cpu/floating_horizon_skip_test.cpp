@@ -1,6 +1,8 @@
-// Skipping runs of slices with the max-height pyramid (SliceRunBound) must not
-// change a single pixel: a run is skipped only when every sample in it stays
-// below the horizon, where Algorithm 1 (Szenberg 1997) paints nothing.
+// The Floating Horizon's speed-ups must not change a single pixel. Skipping
+// runs of slices with the max-height pyramid (SliceRunBound): a run is skipped
+// only when every sample in it stays below the horizon, where Algorithm 1
+// (Szenberg 1997) paints nothing. The cast compiled for x86-64-v3
+// (CastKernel): the same operations as the portable one.
 #include "TestSupport.h"
 
 #include "core/Camera.h"
