@@ -6,7 +6,8 @@
 // (seed 003), and Zamri's accuracy of the LOD meshes against the full mesh.
 #include "CameraOptions.h"
 #include "Commands.h"
-#include "RenderMethods.h"
+#include "RenderSession.h"
+#include "RoamBench.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "io/TileDirectory.h"
@@ -16,6 +17,7 @@
 #include <tbb/info.h>
 
 #include <algorithm>
+#include <functional>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -37,21 +39,26 @@ double median(std::vector<double> v) {
 // once it has three timed frames; the row says how many frames it timed.
 constexpr double kMethodBudgetMs = 15000.0;
 
-nlohmann::json bench_method(const RenderMethod& m, RenderSession& session, const Camera& camera, int frames) {
-    session.want_depth = false; // timed frames do not read the depth back
-    std::unique_ptr<ViewRenderer> r = m.create(session);
-    ColorImage color;
-    DepthImage depth;
-    nlohmann::json stats;
-    r->render(camera, color, depth, stats); // warm-up: first-touch of buffers, pyramids, uploads
+void add_accuracy(nlohmann::json& run, const MethodEntry& m, RenderSession& session, const Camera& camera,
+                  const DepthImage& mesh_depth);
+
+// Times `frames` frames of `m` after a warm-up. A mesh method is also measured
+// against the full mesh's depth when `full_mesh_depth` gives one.
+nlohmann::json bench_method(const MethodEntry& m, RenderSession& session, const Camera& camera, int frames,
+                            const std::function<const DepthImage*()>& full_mesh_depth) {
+    std::unique_ptr<TerrainMethod> method = session.create(m);
+    RenderedView view;
+    session.render(m, *method, camera, false, view); // warm-up: first-touch of buffers, pyramids, uploads
     std::vector<double> ms;
     std::map<std::string, std::vector<double>> steps;
+    nlohmann::json stats;
     double spent = 0;
     for (int f = 0; f < frames && (f < 3 || spent < kMethodBudgetMs); ++f) {
         const auto t0 = std::chrono::steady_clock::now();
-        r->render(camera, color, depth, stats);
+        session.render(m, *method, camera, false, view); // timed frames do not read the depth back
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         spent += ms.back();
+        stats = view_stats_json(session.settings(), camera, view);
         for (const auto& [step, v] : stats["ms"].items()) steps[step].push_back(v.get<double>());
     }
     const double med = median(ms);
@@ -71,22 +78,37 @@ nlohmann::json bench_method(const RenderMethod& m, RenderSession& session, const
     }
     if (stats.contains("triangles")) run["triangles"] = stats["triangles"];
     run["stats"] = stats;
-    r->bench_extras(camera, run);
+    if (view.method.roam) {
+        const nlohmann::json roam = roam_bench(session.data().terrain, camera);
+        run["triangles_per_s"] = roam["triangles_per_s"];
+        run["ms_tessellate_100000"] = roam["ms_tessellate_100000"];
+        run["error_curve"] = roam["curve"];
+    }
+    if (method->output_kind() == MethodOutputKind::Mesh)
+        if (const DepthImage* depth = full_mesh_depth()) add_accuracy(run, m, session, camera, *depth);
     return run;
 }
 
-// Zamri's fidelity: the share of the full mesh's terrain pixels whose view
-// depth the method's image matches within 3 % (and 5 %, the ROAM target).
-void add_accuracy(nlohmann::json& run, const RenderMethod& m, RenderSession& session, const Camera& camera,
+// Zamri's figures for a LOD mesh against full resolution (the terrain in
+// memory): how many fewer triangles than two per cell, the screen-space error,
+// and the share of the full mesh's terrain pixels whose view depth the
+// method's image matches within 3 % (and 5 %, the ROAM target).
+void add_accuracy(nlohmann::json& run, const MethodEntry& m, RenderSession& session, const Camera& camera,
                   const DepthImage& mesh_depth) {
-    session.want_depth = true;
-    std::unique_ptr<ViewRenderer> r = m.create(session);
-    ColorImage color;
-    DepthImage depth;
-    nlohmann::json stats;
-    r->render(camera, color, depth, stats);
-    run["depth_within_3pct"] = compare_depth(depth, mesh_depth, camera, 0.03).share();
-    run["depth_within_5pct"] = compare_depth(depth, mesh_depth, camera, 0.05).share();
+    std::unique_ptr<TerrainMethod> method = session.create(m);
+    RenderedView view;
+    session.render(m, *method, camera, true, view);
+    run["depth_within_3pct"] = compare_depth(*view.depth, mesh_depth, camera, 0.03).share();
+    run["depth_within_5pct"] = compare_depth(*view.depth, mesh_depth, camera, 0.05).share();
+    const MeshArrays* mesh = view.output.mesh;
+    const Terrain& t = session.data().terrain;
+    const double full = 2.0 * double(t.rows() - 1) * double(t.cols() - 1);
+    const ScreenError e = screen_space_error(*mesh, t, camera);
+    run["full_resolution_triangles"] = full;
+    run["triangle_reduction"] = full / double(std::max<std::size_t>(1, mesh->triangle_count()));
+    run["max_error_px"] = e.max_px;
+    run["mean_error_px"] = e.mean_px;
+    run["p99_error_px"] = e.p99_px;
 }
 
 const nlohmann::json* find_run(const nlohmann::json& runs, const std::string& method) {
@@ -200,8 +222,8 @@ void add_bench_command(CLI::App& app) {
     struct Args {
         TerrainArgs terrain;
         CameraArgs camera;
-        RenderSettings settings;
-        std::string methods;
+        MethodOptions methods;
+        std::string method_names;
         int frames = 10;
         int threads = 0;
         bool json = false, markdown = false;
@@ -211,26 +233,30 @@ void add_bench_command(CLI::App& app) {
         "bench", "Time the terrain renderers on one view (default: 1920x1080, far 2048 cells, the overview camera)");
     add_terrain_options(*cmd, args->terrain);
     add_camera_options(*cmd, args->camera);
-    add_render_settings(*cmd, args->settings);
+    add_method_options(*cmd, args->methods);
     cmd->add_option("--frames", args->frames,
                     "timed frames per method after one warm-up frame (a method slower than 15 s in all stops at 3)")
         ->capture_default_str();
-    cmd->add_option("--methods", args->methods, "comma-separated methods (default: all but raymarch; known: " +
-                                                   render_method_names() + ")");
+    cmd->add_option("--methods", args->method_names, "comma-separated methods (default: all but raymarch; known: " +
+                                                   terrain_method_names() + ")");
     cmd->add_option("--threads", args->threads, "worker threads (default: all cores)");
     cmd->add_flag("--json", args->json, "print one JSON object {\"runs\": [...]}");
     cmd->add_flag("--markdown", args->markdown, "print Markdown tables (the default without --json)");
     cmd->callback([args] {
         if (args->frames < 1 || args->frames > 100000) throw Error("--frames", "must be in 1..100000");
         if (args->threads < 0 || args->threads > 1024) throw Error("--threads", "must be in 1..1024");
-        std::vector<const RenderMethod*> methods;
-        if (args->methods.empty()) {
-            for (const auto& m : render_methods())
+        std::vector<const MethodEntry*> methods;
+        if (args->method_names.empty()) {
+            for (const MethodEntry& m : terrain_methods())
                 if (m.bench_by_default) methods.push_back(&m);
         } else {
-            std::stringstream ss(args->methods);
+            std::stringstream ss(args->method_names);
             std::string name;
-            while (std::getline(ss, name, ',')) methods.push_back(&find_render_method(name, "--methods"));
+            while (std::getline(ss, name, ',')) {
+                const MethodEntry* m = find_terrain_method(name);
+                if (!m) throw Error("--methods", "unknown method '" + name + "' (known: " + terrain_method_names() + ")");
+                methods.push_back(m);
+            }
         }
         std::unique_ptr<tbb::global_control> limit;
         if (args->threads > 0)
@@ -240,28 +266,30 @@ void add_bench_command(CLI::App& app) {
         // to be compared with).
         const bool tiles = is_tile_directory(args->terrain.terrain);
         const bool lazy = tiles && std::all_of(methods.begin(), methods.end(),
-                                               [](const RenderMethod* m) { return m->name == "quadtree"; });
+                                               [](const MethodEntry* m) { return m->reads_tiles; });
         const DataSet data = lazy ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
         CameraArgs cam_args = args->camera;
         if (!cam_args.far) cam_args.far = 2048.0 * data.terrain.h_scale(); // "far 2048 samples"
         const Camera camera = make_camera(cam_args, data, 1920, 1080);
-        RenderSession session(data, args->settings, tiles ? args->terrain.terrain : std::string());
+        RenderSession session(data, args->methods, tiles ? args->terrain.terrain : std::string());
 
         nlohmann::json runs = nlohmann::json::array();
         std::optional<DepthImage> mesh_depth;
-        for (const RenderMethod* m : methods) {
-            nlohmann::json run = bench_method(*m, session, camera, args->frames);
-            // Against the full mesh of the same samples (not of a tile directory's overview).
-            if (!lazy && (m->name == "roam" || m->name == "quadtree")) {
-                if (!mesh_depth) {
-                    session.want_depth = true;
-                    ColorImage color;
-                    nlohmann::json stats;
-                    mesh_depth.emplace();
-                    find_render_method("mesh").create(session)->render(camera, color, *mesh_depth, stats);
-                }
-                add_accuracy(run, *m, session, camera, *mesh_depth);
+        // LOD meshes against the full mesh of the same samples (not of a tile
+        // directory's overview).
+        auto full_mesh_depth = [&]() -> const DepthImage* {
+            if (lazy) return nullptr;
+            if (!mesh_depth) {
+                const MethodEntry& mesh = *find_terrain_method("mesh");
+                std::unique_ptr<TerrainMethod> full = session.create(mesh);
+                RenderedView view;
+                session.render(mesh, *full, camera, true, view);
+                mesh_depth = *view.depth;
             }
+            return &*mesh_depth;
+        };
+        for (const MethodEntry* m : methods) {
+            nlohmann::json run = bench_method(*m, session, camera, args->frames, full_mesh_depth);
             runs.push_back(std::move(run));
         }
         const nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},

@@ -5,7 +5,8 @@
 // hovercraft (gl/FlightWindow). With --frames: an unattended run of N frames
 // with scripted keys (FROM-TO in frames). With --replay: the recorded cameras
 // rendered headless to DIR/frame_00000.png ... (and to a video through ffmpeg).
-// Methods (gl/FlightMethods.h, Tab order): mesh, voxel, roam, quadtree.
+// Methods: any row of the method table (methods/MethodTable.h) is shown
+// first; Tab cycles the table's fly rows (mesh, voxel, roam, quadtree).
 // TERRAIN may be a tile directory larger than memory: the quadtree then reads
 // its full-resolution tiles lazily within --cache-mib, while the vehicle,
 // the chase camera and the other methods use its overview (at most 2049
@@ -14,10 +15,9 @@
 //   method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step
 // the last column as "step:ms;step:ms;..." (mean over the timed frames).
 #include "Commands.h"
-#include "QuadtreeMethod.h"
+#include "RenderSession.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
-#include "gl/FlightMethods.h"
 #include "gl/FlightWindow.h"
 #include "io/FlightRecordFile.h"
 #include "io/ImageWriters.h"
@@ -41,7 +41,7 @@ struct FlyOptions {
     TerrainArgs terrain;
     std::string scene, method = "mesh", record, replay, out, screenshot, video, size = "1280x720";
     long long frames = 0;
-    int cache_mib = 1024;
+    long long cache_mib = MethodSettings::kDefaultCacheMib;
     std::vector<std::string> presses;
     double fov = 60;
     bool no_hud = false, hidden = false;
@@ -84,7 +84,7 @@ void encode_video(const std::string& dir, const std::string& video) {
     std::filesystem::rename(temp, video);
 }
 
-void run_replay(const FlyOptions& o, const DataSet& data, const gl::FlightMethodFactory& factory) {
+void run_replay(const FlyOptions& o, const DataSet& data, const MethodContext& methods) {
     if (o.out.empty()) throw Error("--out", "--replay needs --out DIR for the frames");
     int w = 0, h = 0;
     parse_size(o.size, w, h);
@@ -93,7 +93,8 @@ void run_replay(const FlyOptions& o, const DataSet& data, const gl::FlightMethod
     long long index = 0;
     FlightRecord rendered;
     const gl::FlightMethodStats stats = gl::render_flight_record(
-        data, record, o.frames, o.method, w, h, o.fov, factory, [&](const ColorImage& image, long long) {
+        data, record, o.frames, *find_terrain_method(o.method), methods, w, h, o.fov,
+        [&](const ColorImage& image, long long) {
             write_png((std::filesystem::path(o.out) / frame_name(index)).string(), image);
             rendered.frames.push_back(record.frames[std::size_t(index)]);
             ++index;
@@ -111,38 +112,35 @@ void run_fly(const FlyOptions& o) {
         throw Error("--out", "--out and --video render a recorded flight: add --replay path.csv");
     if (!o.screenshot.empty() && o.frames == 0)
         throw Error("--screenshot", "needs --frames N (interactively, P saves a screenshot)");
-    const std::vector<std::string>& names = gl::flight_method_names();
-    if (std::find(names.begin(), names.end(), o.method) == names.end()) {
-        std::string list;
-        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-        throw Error("--method", "'" + o.method + "' is not available (available: " + list + ")");
-    }
+    if (!find_terrain_method(o.method))
+        throw Error("--method", "'" + o.method + "' is not a terrain method (known: " + terrain_method_names(", ") + ")");
     std::vector<ScriptedPress> presses;
     for (const std::string& p : o.presses) presses.push_back(parse_press(p));
 
-    const std::size_t cache_bytes = tile_cache_bytes(o.cache_mib);
-    gl::FlightMethodFactory factory = gl::make_flight_method;
-    if (is_tile_directory(o.terrain.terrain)) {
-        const std::string dir = o.terrain.terrain;
-        factory = [dir, cache_bytes](const std::string& name, const DataSet& d) {
-            return name == "quadtree" ? gl::make_quadtree_flight_method(tile_directory_tiles(dir, cache_bytes))
-                                      : gl::make_flight_method(name, d);
-        };
+    MethodSettings settings;
+    try {
+        settings.cache_bytes = tile_cache_bytes(o.cache_mib);
+    } catch (const Error& e) {
+        rethrow_for_option(e);
     }
     DataSet data = load_terrain_lazily(o.terrain);
     if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
-    if (!o.replay.empty()) return run_replay(o, data, factory);
+    MethodContext methods{data.terrain, settings, {}};
+    if (is_tile_directory(o.terrain.terrain))
+        methods.tiles = [dir = o.terrain.terrain, bound = settings.cache_bytes] {
+            return tile_directory_tiles(dir, bound);
+        };
+    if (!o.replay.empty()) return run_replay(o, data, methods);
 
     gl::FlightWindowOptions wo;
     parse_size(o.size, wo.width, wo.height);
-    wo.methods = names;
     wo.method = o.method;
-    wo.fov = o.fov;
-    wo.frames = o.frames;
-    wo.script = KeyScript(std::move(presses));
-    wo.hud = !o.no_hud;
+    wo.session.fov = o.fov;
+    wo.session.frames = o.frames;
+    wo.session.script = KeyScript(std::move(presses));
+    wo.session.hud = !o.no_hud;
+    wo.session.start = data.start;
     wo.visible = !o.hidden;
-    wo.start = data.start;
     const std::filesystem::path shot_base = o.screenshot.empty() ? std::filesystem::path("overflight.png")
                                                                  : std::filesystem::path(o.screenshot);
     const gl::ScreenshotSink save = [&](const ColorImage& image, int index) {
@@ -158,7 +156,7 @@ void run_fly(const FlyOptions& o) {
         write_png(p.string(), image);
         std::fprintf(stderr, "overflight: saved %s\n", p.string().c_str());
     };
-    const gl::FlightResult result = gl::run_flight_window(data, wo, factory, save);
+    const gl::FlightResult result = gl::run_flight_window(data, wo, methods, save);
     if (!o.record.empty()) write_flight_record(o.record, result.record);
     print_stats(result.per_method);
 }
@@ -171,8 +169,8 @@ void add_fly_command(CLI::App& app) {
     add_terrain_options(*sub, o->terrain);
     sub->add_option("--scene", o->scene, "Scene TOML with objects to add");
     sub->add_option("--method", o->method,
-                    "Terrain method shown first (Tab cycles mesh -> voxel -> roam -> quadtree); with --replay, "
-                    "the one that renders")
+                    "Terrain method shown first (" + terrain_method_names() + "; Tab cycles " +
+                        terrain_method_names(" -> ", true) + "); with --replay, the one that renders")
         ->capture_default_str();
     sub->add_option("--record", o->record, "Write the flight (per-frame camera and keys) as CSV");
     sub->add_option("--replay", o->replay, "Render a recorded flight headless instead of flying");

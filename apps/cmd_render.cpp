@@ -4,7 +4,7 @@
 // depth TIFF), with timings and counts as one JSON object on stdout.
 #include "CameraOptions.h"
 #include "Commands.h"
-#include "RenderMethods.h"
+#include "RenderSession.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "io/ImageWriters.h"
@@ -26,7 +26,7 @@ void add_render_command(CLI::App& app) {
     struct Args {
         TerrainArgs terrain;
         CameraArgs camera;
-        RenderSettings settings;
+        MethodOptions methods;
         std::string out, depth, method = "voxel";
         bool stats = false;
     };
@@ -34,35 +34,32 @@ void add_render_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("render", "Render one view of a terrain to a PNG (and its depth to a TIFF)");
     add_terrain_options(*cmd, args->terrain);
     cmd->add_option("-o,--output", args->out, "output PNG")->required();
-    cmd->add_option("--method", args->method, "terrain renderer: " + render_method_names())->capture_default_str();
+    cmd->add_option("--method", args->method, "terrain renderer: " + terrain_method_names())->capture_default_str();
     add_camera_options(*cmd, args->camera);
-    add_render_settings(*cmd, args->settings);
+    add_method_options(*cmd, args->methods);
     cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
     cmd->callback([args] {
-        const RenderMethod* method = &find_render_method(args->method);
+        const MethodEntry* row = find_terrain_method(args->method);
+        if (!row) throw Error("--method", "unknown method '" + args->method + "' (known: " + terrain_method_names() + ")");
         auto t0 = std::chrono::steady_clock::now();
-        const DataSet data =
-            method->name == "quadtree" ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
+        const bool tiles = is_tile_directory(args->terrain.terrain);
+        const DataSet data = row->reads_tiles ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
         const double ms_load = ms_since(t0);
         const Camera camera = make_camera(args->camera, data, 1280, 720);
-        RenderSession session(data, args->settings,
-                              is_tile_directory(args->terrain.terrain) ? args->terrain.terrain : std::string());
-        session.want_depth = !args->depth.empty();
+        RenderSession session(data, args->methods, tiles ? args->terrain.terrain : std::string());
         // A user's `voxel` view shows the objects: Szenberg's composite.
-        if (method->name == "voxel" && session.has_objects()) method = &find_render_method("voxel+objects");
-        std::unique_ptr<ViewRenderer> renderer = method->create(session);
-        ColorImage color;
-        DepthImage depth;
-        nlohmann::json stats;
+        if (args->method == "voxel" && session.has_objects()) row = find_terrain_method("voxel+objects");
+        std::unique_ptr<TerrainMethod> method = session.create(*row);
+        RenderedView view;
         t0 = std::chrono::steady_clock::now();
-        renderer->render(camera, color, depth, stats);
+        session.render(*row, *method, camera, !args->depth.empty(), view);
         const double ms_render = ms_since(t0);
         t0 = std::chrono::steady_clock::now();
-        write_png(args->out, color);
+        write_png(args->out, *view.color);
         if (!args->depth.empty()) {
             try {
-                write_depth_tiff(args->depth, depth);
+                write_depth_tiff(args->depth, *view.depth);
             } catch (...) {
                 std::remove(args->out.c_str()); // no half-written output
                 throw;
@@ -70,6 +67,7 @@ void add_render_command(CLI::App& app) {
         }
         const double ms_write = ms_since(t0);
         if (args->stats) {
+            nlohmann::json stats = view_stats_json(session.settings(), camera, view);
             stats["method"] = args->method;
             stats["width"] = camera.width;
             stats["height"] = camera.height;

@@ -49,7 +49,7 @@ void BM_TileStream(benchmark::State& state) {
     const char* bound_mib = std::getenv("OVERFLIGHT_TILE_BOUND_MIB");
     const std::size_t bound = std::size_t(bound_mib ? std::max(1L, std::atol(bound_mib)) : 1024L) << 20;
     TileSet tiles(index.grid, tile_directory_loader(dir, index), bound);
-    gl::HeadlessRenderer gl(overview, Scene{});
+    gl::HeadlessRenderer gl(overview.terrain, Scene{});
     const Terrain& t = overview.terrain;
 
     // Eastwards across the middle, 300 m above the ground, half a tile per frame.
@@ -72,7 +72,10 @@ void BM_TileStream(benchmark::State& state) {
         if (x > 0.9 * t.width()) x = 0.1 * t.width();
         cam.eye = {x, t.height_bilinear(float(x), float(z)) + 300.0, z};
         const TileFrameStats s = tiles.build_mesh(cam, 1.0, mesh);
-        gl.render_mesh(mesh, cam, color, nullptr);
+        MethodOutput out;
+        out.kind = MethodOutputKind::Mesh;
+        out.mesh = &mesh;
+        gl.render(out, cam, overview.environment, {}, color, nullptr);
         triangles += double(s.triangles);
         loaded += s.loaded;
         evicted += s.evicted;

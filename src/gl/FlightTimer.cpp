@@ -52,10 +52,6 @@ void FlightStepTimer::begin_frame(int tag) {
     s.steps.count = 0;
 }
 
-void FlightStepTimer::cpu_step_since(const char* name, std::chrono::steady_clock::time_point start) {
-    cpu_step(name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-}
-
 void FlightStepTimer::cpu_step(const char* name, double ms) {
     if (started_ == delivered_) return; // no frame begun
     FlightSteps& f = slot(started_ - 1).steps;

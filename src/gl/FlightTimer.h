@@ -11,6 +11,8 @@
 // draw only when its bins are flushed (at the swap, or when they fill up), so
 // there the GL steps of small draws read far below their cost; the frame time
 // is the reliable total on such a renderer.
+#include "gl/StepTimer.h"
+
 #include <epoxy/gl.h>
 
 #include <array>
@@ -33,7 +35,7 @@ struct FlightSteps {
     double total_ms() const;
 };
 
-class FlightStepTimer {
+class FlightStepTimer final : public StepTimer {
 public:
     // Receives each frame's steps, in frame order, once all of its GL results
     // are in, with the tag given to begin_frame (the window passes the method).
@@ -48,12 +50,9 @@ public:
     // Starts a frame (delivering the finished ones first). Steps beyond
     // FlightSteps::kMax in one frame are dropped.
     void begin_frame(int tag);
-    void cpu_step(const char* name, double ms);
-    // cpu_step(name, milliseconds from `start` to now).
-    void cpu_step_since(const char* name, std::chrono::steady_clock::time_point start);
-    // A GL step: the commands issued between begin_gl and end_gl. Not nested.
-    void begin_gl(const char* name);
-    void end_gl();
+    void cpu_step(const char* name, double ms) override;
+    void begin_gl(const char* name) override;
+    void end_gl() override;
     // Waits for the results of every frame still pending and delivers them.
     void flush();
 

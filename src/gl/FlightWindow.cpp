@@ -1,16 +1,13 @@
+// Based on: CMSC 23700 project 2a sec. 3 and 4; Szenberg et al. 1997 sec. 5 and 7 (Table 1 steps).
 #include "gl/FlightWindow.h"
 
 #include "core/Error.h"
-#include "gl/FlightMethods.h"
-#include "gl/FlightRenderer.h"
+#include "gl/Compositor.h"
 #include "gl/FlightTimer.h"
 #include "gl/GlContext.h"
+#include "gl/HeadlessRenderer.h"
 #include "gl/Hud.h"
 #include "gl/RenderTarget.h"
-#include "sim/ChaseCamera.h"
-#include "sim/FixedStepClock.h"
-#include "sim/Hovercraft.h"
-#include "sim/KeyState.h"
 
 #include <GLFW/glfw3.h>
 #include <epoxy/gl.h>
@@ -19,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <optional>
 
 namespace overflight::gl {
@@ -27,15 +25,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// Keys and one-shot commands gathered from GLFW events between frames.
-struct InputState {
-    KeyState keys;
-    std::vector<Key> commands; // reserved up front: no allocation per frame
-};
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::optional<Key> key_of(int glfw_key) {
     switch (glfw_key) {
@@ -61,75 +51,38 @@ std::optional<Key> key_of(int glfw_key) {
 }
 
 void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
-    auto* in = static_cast<InputState*>(glfwGetWindowUserPointer(window));
-    if (!in || action == GLFW_REPEAT) return; // seed 003: key repeat is ignored
+    auto* session = static_cast<FlightSession*>(glfwGetWindowUserPointer(window));
+    if (!session || action == GLFW_REPEAT) return; // key repeat is ignored (sec. 3.1)
     const std::optional<Key> k = key_of(key);
     if (!k) return;
-    if (is_vehicle_key(*k)) {
-        if (action == GLFW_PRESS) in->keys.press(*k);
-        else in->keys.release(*k);
-    } else if (action == GLFW_PRESS && in->commands.size() < in->commands.capacity()) {
-        in->commands.push_back(*k);
-    }
+    if (action == GLFW_PRESS) session->press(*k);
+    else session->release(*k);
 }
 
-// Camera far plane: the whole map from any point on it.
-void setup_camera(Camera& cam, const Terrain& t, double fov) {
-    cam.fov = fov;
-    cam.near = 0.5;
-    const double span = std::hypot(double(t.width()), double(t.depth()), double(t.max_height() - t.min_height()));
-    cam.far = std::max(1000.0, 1.1 * span);
-    cam.projection = Projection::Shear;
-}
-
-// Chase distances grow with the grid spacing: on a 10 m or 90 m grid the
-// paper's few-metre offsets would fill the view with a single cell. The eye
-// stays low enough (above / behind = 0.2, about 11 degrees down) that the
-// vehicle is in the lower part of the view while the camera aims at the
-// look-ahead point (60 degrees horizontal fov at 16:9 sees 18 degrees down).
-ChaseParams chase_params(const Terrain& t) {
-    ChaseParams p;
-    const double hs = t.h_scale();
-    p.behind = std::max(p.behind, 3.0 * hs);
-    p.above = std::max(p.above, 0.6 * hs);
-    p.look_ahead = std::max(p.look_ahead, 8.0 * hs);
-    return p;
-}
-
-// Fog (f) and lighting (1) toggles applied to the data set's environment. A
-// data set without fog gets a density that fades the far side of the map.
-Environment view_environment(const Environment& env, const Terrain& t, bool fog, bool lighting) {
-    Environment e = env;
-    if (!fog) e.fog_density = 0;
-    else if (!(e.fog_density > 0))
-        e.fog_density = float(2.0 / std::max(1.0, std::hypot(double(t.width()), double(t.depth()))));
-    if (!lighting) {
-        e.sun_color = glm::vec3(0.0f);
-        e.ambient = glm::vec3(1.0f);
-    }
-    return e;
-}
-
+// The methods of the window, built from the table when first shown: the
+// first one asked for, then the fly rows in table order (Tab).
 class MethodSet {
 public:
-    MethodSet(const DataSet& data, const FlightMethodFactory& factory, std::vector<std::string> names)
-        : data_(data), factory_(factory), names_(std::move(names)), methods_(names_.size()) {}
-
-    // The method at `index`, created on first use; nullptr if the factory
-    // does not know it.
-    FlightMethod* get(std::size_t index) {
-        if (!methods_[index])
-            methods_[index] = factory_ ? factory_(names_[index], data_) : make_flight_method(names_[index], data_);
-        return methods_[index].get();
+    MethodSet(const MethodContext& context, const std::string& first) : context_(context) {
+        const MethodEntry* entry = find_terrain_method(first);
+        if (!entry)
+            throw Error("--method", "'" + first + "' is not a terrain method (known: " + terrain_method_names(", ") + ")");
+        rows_.push_back(entry);
+        for (const MethodEntry& m : terrain_methods())
+            if (m.fly && &m != entry) rows_.push_back(&m);
+        methods_.resize(rows_.size());
     }
-    std::size_t size() const { return names_.size(); }
-    const std::string& name(std::size_t i) const { return names_[i]; }
+    TerrainMethod& get(std::size_t i) {
+        if (!methods_[i]) methods_[i] = rows_[i]->create(context_);
+        return *methods_[i];
+    }
+    std::size_t size() const { return rows_.size(); }
+    const char* name(std::size_t i) const { return rows_[i]->name; }
 
 private:
-    const DataSet& data_;
-    const FlightMethodFactory& factory_;
-    std::vector<std::string> names_;
-    std::vector<std::unique_ptr<FlightMethod>> methods_;
+    const MethodContext& context_;
+    std::vector<const MethodEntry*> rows_;
+    std::vector<std::unique_ptr<TerrainMethod>> methods_;
 };
 
 FlightMethodStats& stats_for(std::vector<FlightMethodStats>& all, const std::string& name) {
@@ -139,19 +92,26 @@ FlightMethodStats& stats_for(std::vector<FlightMethodStats>& all, const std::str
     return all.back();
 }
 
-// Adds one frame's step times to a method's sums.
-void add_steps(FlightMethodStats& stats, const FlightSteps& steps) {
-    for (int i = 0; i < steps.count; ++i) {
-        const FlightStep& step = steps.step[std::size_t(i)];
-        auto it = std::find_if(stats.step_ms.begin(), stats.step_ms.end(),
-                               [&](const auto& entry) { return entry.first == step.name; });
-        if (it == stats.step_ms.end()) it = stats.step_ms.insert(stats.step_ms.end(), {step.name, 0.0});
-        it->second += step.ms;
-    }
-    ++stats.timed_frames;
+// Produces and composites one frame of `method` into `target`, reporting the
+// method's CPU steps and the compositor's steps through `timer`.
+CompositeCounts draw_frame(TerrainMethod& method, MethodStats& stats, Compositor& compositor, const Camera& camera,
+                           const Environment& env, RenderTarget& target, StepTimer& timer,
+                           const CompositeOptions& options, const HovercraftState& vehicle) {
+    const MethodOutput out = method.produce(MethodView{camera, env, glm::dvec2(vehicle.x, vehicle.z)}, stats);
+    for (const MethodStep& s : stats.steps) timer.cpu_step(s.name, s.ms);
+    return compositor.draw(out, camera, env, target, timer, options);
 }
 
 } // namespace
+
+void FlightMethodStats::add_steps(const std::vector<std::pair<const char*, double>>& steps) {
+    for (const auto& [name, ms] : steps) {
+        auto it = std::find_if(step_ms.begin(), step_ms.end(), [&](const auto& entry) { return entry.first == name; });
+        if (it == step_ms.end()) it = step_ms.insert(step_ms.end(), {name, 0.0});
+        it->second += ms;
+    }
+    ++timed_frames;
+}
 
 std::string FlightMethodStats::steps_text() const {
     std::string text;
@@ -164,162 +124,88 @@ std::string FlightMethodStats::steps_text() const {
     return text;
 }
 
-FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& options,
-                               const FlightMethodFactory& factory, const ScreenshotSink& screenshot) {
-    const Terrain& terrain = data.terrain;
-    std::vector<std::string> names = options.methods;
-    if (std::find(names.begin(), names.end(), options.method) == names.end())
-        names.insert(names.begin(), options.method);
-    std::size_t current = std::size_t(std::find(names.begin(), names.end(), options.method) - names.begin());
-
-    // The vehicle first, so a bad start fails before a window flashes up.
-    const double x0 = options.start.given ? options.start.x : terrain.width() * 0.5;
-    const double z0 = options.start.given ? options.start.z : terrain.depth() * 0.5;
-    Hovercraft hc(terrain, x0, z0, options.start.given ? options.start.heading : 0.0);
+FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& options, const MethodContext& context,
+                               const ScreenshotSink& screenshot) {
+    // The vehicle and the first method's name first, so bad input fails before a window flashes up.
+    FlightSession session(data.terrain, data.environment, options.session);
+    MethodSet methods(context, options.method);
+    std::size_t current = 0;
 
     WindowContext window("Overflight - " + data.info.source, options.width, options.height, options.visible);
-    const bool unattended = options.frames > 0;
-    glfwSwapInterval(unattended ? 0 : 1); // scripted runs go as fast as the GL allows
-    InputState input;
-    input.commands.reserve(64);
-    glfwSetWindowUserPointer(window.window(), &input);
+    glfwSwapInterval(session.unattended() ? 0 : 1); // scripted runs go as fast as the GL allows
+    glfwSetWindowUserPointer(window.window(), &session);
     glfwSetKeyCallback(window.window(), on_key);
     Hud hud(window.window()); // after our callback: ImGui chains to it
-    hud.visible = options.hud;
+    methods.get(current);
+    Compositor compositor(data.terrain, data.scene);
 
-    MethodSet methods(data, factory, names);
-    if (!methods.get(current)) throw Error("--method", "'" + names[current] + "' is not available in this build");
-    FlightRenderer renderer(data);
-
-    ChaseCamera chase(chase_params(terrain));
-    Camera cam;
-    setup_camera(cam, terrain, options.fov);
-    chase.reset(terrain, hc.state(), cam);
-    FixedStepClock clock(hc.params().step);
-
-    bool fog = data.environment.fog_density > 0, lighting = true, wireframe = false;
     FlightResult result;
-    result.record.frames.reserve(unattended ? std::size_t(options.frames) : 4096);
-    unsigned scripted_held = 0; // vehicle keys the script holds (bit per key)
     ColorImage shot;
     int shots = 0;
-    double sim_time = 0, fps = 0, frame_ms = 0, step_ms = 0;
-    FlightFrameCounts counts;
+    double fps = 0, frame_ms = 0;
+    CompositeCounts counts;
+    MethodStats method_stats;
     // Step timings arrive a few frames late (GL queries); the HUD shows the
     // latest, the per-method statistics sum them.
     FlightSteps latest_steps;
-    FlightStepTimer timer([&](int tag, const FlightSteps& steps) {
-        latest_steps = steps;
-        add_steps(stats_for(result.per_method, methods.name(std::size_t(tag))), steps);
+    std::vector<std::pair<const char*, double>> steps;
+    FlightStepTimer timer([&](int tag, const FlightSteps& s) {
+        latest_steps = s;
+        steps.clear();
+        for (int i = 0; i < s.count; ++i) steps.emplace_back(s.step[std::size_t(i)].name, s.step[std::size_t(i)].ms);
+        stats_for(result.per_method, methods.name(std::size_t(tag))).add_steps(steps);
     });
     RenderTarget window_target = RenderTarget::default_framebuffer(options.width, options.height);
     auto last = Clock::now();
 
-    for (long long frame = 0; !unattended || frame < options.frames; ++frame) {
+    while (!session.finished()) {
         const auto frame_start = Clock::now();
         glfwPollEvents();
         if (window.should_close()) break;
-
-        // Scripted keys act exactly like events arriving before this frame.
-        for (int k = 0; k < 4; ++k) {
-            const bool held = options.script.held_at(Key(k), frame);
-            const bool was = (scripted_held >> k) & 1u;
-            if (held && !was) input.keys.press(Key(k));
-            if (!held && was) input.keys.release(Key(k));
-            scripted_held = held ? scripted_held | (1u << k) : scripted_held & ~(1u << k);
-        }
-        for (int k = 4; k < kKeyCount; ++k)
-            if (options.script.starts_at(Key(k), frame) && input.commands.size() < input.commands.capacity())
-                input.commands.push_back(Key(k));
-
         bool quit = false, take_shot = false;
-        for (Key k : input.commands) {
-            switch (k) {
-            case Key::Fog: fog = !fog; break;
-            case Key::Lighting: lighting = !lighting; break;
-            case Key::Wireframe: wireframe = !wireframe; break;
-            case Key::DetailUp: methods.get(current)->scale_detail(std::sqrt(2.0)); break;
-            case Key::DetailDown: methods.get(current)->scale_detail(1.0 / std::sqrt(2.0)); break;
-            case Key::NextMethod:
-                // Tab: the next method that can be built, same camera.
-                for (std::size_t i = 1; i <= methods.size(); ++i) {
-                    const std::size_t next = (current + i) % methods.size();
-                    if (methods.get(next)) {
-                        current = next;
-                        break;
-                    }
-                }
-                break;
-            case Key::Screenshot: take_shot = true; break;
-            case Key::Hud: hud.visible = !hud.visible; break;
-            case Key::Quit: quit = true; break;
-            default: break;
+        for (Key k : session.begin_frame()) {
+            if (k == Key::DetailUp) methods.get(current).scale_detail(std::sqrt(2.0));
+            if (k == Key::DetailDown) methods.get(current).scale_detail(1.0 / std::sqrt(2.0));
+            if (k == Key::NextMethod) {
+                current = (current + 1) % methods.size();
+                methods.get(current);
             }
+            take_shot |= k == Key::Screenshot;
+            quit |= k == Key::Quit;
         }
-        input.commands.clear();
         if (quit) break;
-
-        // Physics: fixed 10 ms steps for the time this frame stands for.
-        const double dt = unattended ? options.frame_time : std::min(0.25, seconds_since(last));
+        session.advance(seconds_since(last));
         last = Clock::now();
-        sim_time += dt;
-        const int steps = clock.advance(dt);
-        Controls seen;
-        const auto physics_start = Clock::now();
-        for (int i = 0; i < steps; ++i) {
-            const Controls c = input.keys.sample();
-            hc.step(c);
-            seen.accelerate |= c.accelerate;
-            seen.brake |= c.brake;
-            seen.left |= c.left;
-            seen.right |= c.right;
-        }
-        if (steps > 0) step_ms = 1e3 * seconds_since(physics_start) / steps;
-        result.physics_steps += steps;
-        chase.update(terrain, hc.state(), dt, cam);
 
         int fb_w = 0, fb_h = 0;
         window.framebuffer_size(fb_w, fb_h);
+        const HovercraftState& s = session.vehicle();
         if (fb_w > 0 && fb_h > 0) { // minimised: keep simulating, draw nothing
+            Camera& cam = session.camera();
             cam.width = fb_w;
             cam.height = fb_h;
             // Kept between frames: its full-screen copy pass is built once.
             if (window_target.width() != fb_w || window_target.height() != fb_h)
                 window_target = RenderTarget::default_framebuffer(fb_w, fb_h);
-            const Environment env = view_environment(data.environment, terrain, fog, lighting);
-            FlightMethod* method = methods.get(current);
-            const HovercraftState& s = hc.state();
+            const ViewToggles& t = session.toggles();
             timer.begin_frame(int(current));
-            counts = renderer.draw(*method, cam, env, window_target, timer, VehiclePose{s.x, s.z, s.heading},
-                                   wireframe);
+            counts = draw_frame(methods.get(current), method_stats, compositor, cam, session.environment(),
+                                window_target, timer, {true, false, t.wireframe, VehiclePose{s.x, s.z, s.heading}}, s);
             // Screenshots are taken before the HUD so they match a replay.
-            const bool last_frame = unattended && frame + 1 == options.frames;
-            if ((take_shot || last_frame) && screenshot) {
+            if ((take_shot || session.last_frame()) && screenshot) {
                 window_target.read_color(shot);
                 if (take_shot) screenshot(shot, shots++);
-                if (last_frame) screenshot(shot, -1);
+                if (session.last_frame()) screenshot(shot, -1);
             }
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             glViewport(0, 0, fb_w, fb_h);
-            hud.draw(HudInfo{fps, frame_ms, step_ms, latest_steps, counts.terrain_triangles, counts.object_triangles,
-                             method->name(), method->detail(), glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, fog,
-                             lighting, wireframe});
+            hud.visible = t.hud;
+            hud.draw(HudInfo{fps, frame_ms, session.ms_per_physics_step(), latest_steps, counts.terrain_primitives,
+                             counts.object_triangles, methods.name(current), methods.get(current).detail(),
+                             glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, t.fog, t.lighting, t.wireframe});
             window.swap_buffers();
         }
-
-        const HovercraftState& s = hc.state();
-        FlightFrame rec;
-        rec.frame = frame;
-        rec.time = sim_time;
-        rec.eye = cam.eye;
-        rec.heading = cam.heading;
-        rec.pitch = cam.pitch;
-        rec.x = s.x;
-        rec.z = s.z;
-        rec.velocity = s.velocity;
-        rec.vehicle_heading = s.heading;
-        rec.keys = seen;
-        result.record.frames.push_back(rec);
+        session.end_frame();
 
         const double frame_s = seconds_since(frame_start);
         frame_ms = 1e3 * frame_s;
@@ -327,27 +213,26 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
         FlightMethodStats& st = stats_for(result.per_method, methods.name(current));
         ++st.frames;
         st.seconds += frame_s;
-        st.triangles += counts.terrain_triangles;
+        st.triangles += counts.terrain_primitives;
         st.object_triangles += counts.object_triangles;
     }
     timer.flush();
+    result.record = session.record();
+    result.physics_steps = session.physics_steps();
     return result;
 }
 
 FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& record, long long frames,
-                                       const std::string& method_name, int width, int height, double fov,
-                                       const FlightMethodFactory& factory,
-                                       const std::function<void(const ColorImage&, long long frame)>& sink) {
-    HeadlessContext context;
-    RenderTarget target(width, height);
-    std::unique_ptr<FlightMethod> method = factory ? factory(method_name, data) : make_flight_method(method_name, data);
-    if (!method) throw Error("--method", "'" + method_name + "' is not available in this build");
-    FlightRenderer renderer(data);
-    FlightMethodStats stats{method_name};
-    FlightStepTimer timer([&](int, const FlightSteps& steps) { add_steps(stats, steps); });
+                                       const MethodEntry& entry, const MethodContext& context, int width, int height,
+                                       double fov, const std::function<void(const ColorImage&, long long frame)>& sink) {
+    HeadlessRenderer renderer(data.terrain, data.scene);
+    std::unique_ptr<TerrainMethod> method = entry.create(context);
+    FlightMethodStats stats{entry.name};
+    MethodStats method_stats;
+    FrameTimings timings;
+    std::vector<std::pair<const char*, double>> steps;
 
-    Camera cam;
-    setup_camera(cam, data.terrain, fov);
+    Camera cam = flight_camera(data.terrain, fov);
     cam.width = width;
     cam.height = height;
     const Environment env = view_environment(data.environment, data.terrain, data.environment.fog_density > 0, true);
@@ -360,17 +245,19 @@ FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& 
         cam.eye = f.eye;
         cam.heading = f.heading;
         cam.pitch = f.pitch;
-        timer.begin_frame(0);
-        const FlightFrameCounts counts =
-            renderer.draw(*method, cam, env, target, timer, VehiclePose{f.x, f.z, f.vehicle_heading}, false);
-        target.read_color(image);
+        const MethodOutput out = method->produce(MethodView{cam, env, glm::dvec2(f.x, f.z)}, method_stats);
+        renderer.render(out, cam, env, {true, false, false, VehiclePose{f.x, f.z, f.vehicle_heading}}, image, nullptr,
+                        &timings);
         stats.seconds += seconds_since(t0);
-        stats.triangles += counts.terrain_triangles;
-        stats.object_triangles += counts.object_triangles;
+        steps.clear();
+        for (const MethodStep& s : method_stats.steps) steps.emplace_back(s.name, s.ms);
+        steps.insert(steps.end(), timings.steps_ms.begin(), timings.steps_ms.end());
+        stats.add_steps(steps);
+        stats.triangles += timings.counts.terrain_primitives;
+        stats.object_triangles += timings.counts.object_triangles;
         ++stats.frames;
         sink(image, f.frame);
     }
-    timer.flush();
     return stats;
 }
 

@@ -45,18 +45,23 @@ protected:
     void SetUp() override {
         OVERFLIGHT_SHARED_FILE(path, "srtm/mt_rainier_90m.tif");
         data_ = load_terrain(path);
-        gl_ = std::make_unique<gl::HeadlessRenderer>(data_, Scene{});
+        gl_ = std::make_unique<gl::HeadlessRenderer>(data_.terrain, Scene{});
     }
     DepthImage mesh_depth(const Camera& cam) {
         ColorImage color;
         DepthImage depth;
-        gl_->render(gl::TerrainMethod::Mesh, cam, color, &depth);
+        MethodOutput out;
+        out.kind = MethodOutputKind::Resident;
+        gl_->render(out, cam, data_.environment, {}, color, &depth);
         return depth;
     }
     DepthImage lod_depth(const MeshArrays& mesh, const Camera& cam) {
         ColorImage color;
         DepthImage depth;
-        gl_->render_mesh(mesh, cam, color, &depth);
+        MethodOutput out;
+        out.kind = MethodOutputKind::Mesh;
+        out.mesh = &mesh;
+        gl_->render(out, cam, data_.environment, {}, color, &depth);
         return depth;
     }
     DataSet data_;

@@ -7,6 +7,7 @@
 #include "core/DemoIsland.h"
 #include "gl/HeadlessRenderer.h"
 #include "gl/ObjectGeometry.h"
+#include "methods/MethodTable.h"
 #include "io/ImageWriters.h"
 #include "raycast/FloatingHorizon.h"
 
@@ -65,8 +66,16 @@ Frame voxel(const DataSet& d, const Camera& cam) {
 Frame with_objects(gl::HeadlessRenderer& r, const char* method, const Camera& cam, const Frame* raycast,
                    bool read_depth = false) {
     Frame f;
-    if (raycast) r.composite(raycast->color, raycast->depth, cam, true, f.color, read_depth ? &f.depth : nullptr);
-    else r.render(*gl::parse_terrain_method(method), cam, f.color, &f.depth);
+    const Environment& env = demo().environment;
+    if (raycast) {
+        const MethodOutput out{MethodOutputKind::Images, &raycast->color, &raycast->depth};
+        r.render(out, cam, env, {}, f.color, read_depth ? &f.depth : nullptr);
+    } else {
+        const MethodSettings settings;
+        const std::unique_ptr<TerrainMethod> m = find_terrain_method(method)->create({demo().terrain, settings, {}});
+        MethodStats stats;
+        r.render(m->produce({cam, env, std::nullopt}, stats), cam, env, {}, f.color, &f.depth);
+    }
     return f;
 }
 
@@ -123,8 +132,8 @@ TEST(GlObjects, SameBoxCoversTheSamePixelsOverVoxelAndMesh) {
     Scene scene;
     scene.objects.push_back(magenta_box(bx, bz, 40));
 
-    gl::HeadlessRenderer empty(d, Scene{});
-    gl::HeadlessRenderer boxed(d, scene);
+    gl::HeadlessRenderer empty(d.terrain, Scene{});
+    gl::HeadlessRenderer boxed(d.terrain, scene);
     const Frame rc = voxel(d, cam);
     const auto voxel_mask = changed(with_objects(empty, "voxel", cam, &rc), with_objects(boxed, "voxel", cam, &rc));
     const auto mesh_mask = changed(with_objects(empty, "mesh", cam, nullptr), with_objects(boxed, "mesh", cam, nullptr));
@@ -156,7 +165,7 @@ TEST(GlObjects, CompositedDepthIsTheRayCastersWithSkyRows) {
     const DataSet& d = demo();
     Camera cam = demo_camera(320, 200);
     cam.pitch = 20;
-    gl::HeadlessRenderer empty(d, Scene{});
+    gl::HeadlessRenderer empty(d.terrain, Scene{});
     const Frame rc = voxel(d, cam);
     for (int c = 0; c < cam.width; ++c) ASSERT_EQ(rc.depth.at(c, 0), 1.0f) << "the view must show sky at the top";
     ASSERT_LT(rc.depth.at(160, 199), 1.0f) << "and terrain at the bottom";
@@ -168,7 +177,7 @@ TEST(GlObjects, CompositedDepthIsTheRayCastersWithSkyRows) {
 TEST(GlObjects, BoxBehindARidgeIsHiddenInBothRenderers) {
     const DataSet& d = demo();
     const Camera cam = demo_camera(320, 200);
-    gl::HeadlessRenderer empty(d, Scene{});
+    gl::HeadlessRenderer empty(d.terrain, Scene{});
     const Frame rc = voxel(d, cam);
     const Frame mesh = with_objects(empty, "mesh", cam, nullptr);
     // Search the terrain for a spot whose whole box (20 m cube) is behind the
@@ -195,13 +204,13 @@ TEST(GlObjects, BoxBehindARidgeIsHiddenInBothRenderers) {
     ASSERT_TRUE(hidden) << "no hidden spot found for this camera";
     Scene scene;
     scene.objects.push_back(*hidden);
-    gl::HeadlessRenderer boxed(d, scene);
+    gl::HeadlessRenderer boxed(d.terrain, scene);
     EXPECT_EQ(count(changed(with_objects(empty, "voxel", cam, &rc), with_objects(boxed, "voxel", cam, &rc))), 0);
     EXPECT_EQ(count(changed(mesh, with_objects(boxed, "mesh", cam, nullptr))), 0);
     // The same box moved into the village clearing shows in both.
     scene.objects[0].x = d.start.x;
     scene.objects[0].z = d.start.z;
-    gl::HeadlessRenderer moved(d, scene);
+    gl::HeadlessRenderer moved(d.terrain, scene);
     EXPECT_GT(count(changed(with_objects(empty, "voxel", cam, &rc), with_objects(moved, "voxel", cam, &rc))), 20);
     EXPECT_GT(count(changed(mesh, with_objects(moved, "mesh", cam, nullptr))), 20);
 }
@@ -218,7 +227,7 @@ TEST(GlObjects, CablesSagAsSpecifiedInTheImage) {
     line.sag = 15;
     line.color = {0, 0, 0};
     d.scene.lines.push_back(line);
-    gl::HeadlessRenderer r(d, d.scene);
+    gl::HeadlessRenderer r(d.terrain, d.scene);
     Camera cam;
     cam.eye = {320, 40, 700}; // at cable height, 380 m south of the line, looking north
     cam.heading = 180;
@@ -229,7 +238,9 @@ TEST(GlObjects, CablesSagAsSpecifiedInTheImage) {
     cam.near = 1;
     cam.far = 2000;
     Frame f;
-    r.render(gl::TerrainMethod::Mesh, cam, f.color, nullptr);
+    MethodOutput mesh;
+    mesh.kind = MethodOutputKind::Resident;
+    r.render(mesh, cam, d.environment, {}, f.color, nullptr);
     const auto dark = [&](int c, int row) { const Rgb8 p = f.color.at(c, row); return p.r < 60 && p.g < 60 && p.b < 60; };
     const double arm = gl::tower_arm(line.height);
     for (double side : {-arm, 0.0, arm}) {
@@ -278,7 +289,7 @@ void expect_golden(const std::string& name, const ColorImage& img, int max_diff,
 TEST(GlGolden, DemoWithObjects) {
     const DataSet& d = demo();
     const Camera cam = demo_camera();
-    gl::HeadlessRenderer r(d, d.scene);
+    gl::HeadlessRenderer r(d.terrain, d.scene);
     for (const char* m : {"mesh", "top-faces", "blocks"}) {
         Frame f = with_objects(r, m, cam, nullptr);
         expect_golden(std::string("demo257_") + m, f.color, 6, 0.01);

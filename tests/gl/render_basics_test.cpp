@@ -6,7 +6,9 @@
 #include "gl/GlContext.h"
 #include "gl/HeadlessRenderer.h"
 #include "gl/RenderTarget.h"
-#include "gl/Renderer.h"
+#include "gl/FrameUniforms.h"
+#include "gl/StreamedMesh.h"
+#include "methods/TerrainMethod.h"
 #include "raycast/DepthVector.h"
 
 #include <epoxy/gl.h>
@@ -75,7 +77,8 @@ TEST(GlContext, HeadlessIsRealOpenGL45Core) {
 TEST(GlProjection, RandomPointsLandOnTheCorePixelWithTheRaycasterDepth) {
     gl::HeadlessContext ctx;
     DataSet data = flat_terrain();
-    gl::Renderer renderer(data);
+    gl::FrameUniforms frame;
+    gl::StreamedMesh mesh;
     std::mt19937 rng(4);
     std::uniform_real_distribution<double> U(-1, 1);
     for (Projection proj : {Projection::Shear, Projection::Tilt}) {
@@ -90,8 +93,14 @@ TEST(GlProjection, RandomPointsLandOnTheCorePixelWithTheRaycasterDepth) {
         cam.far = 3000;
         cam.projection = proj;
         gl::RenderTarget target(cam.width, cam.height);
-        renderer.begin_frame(cam, target);
-        const gl::FrameBlock& fb = renderer.frame().block();
+        frame.update(cam, data.environment, data.terrain);
+        frame.bind();
+        target.bind();
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glClearDepth(1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        const gl::FrameBlock& fb = frame.block();
 
         // Random points inside the frustum, at view depths 10..2000.
         MeshArrays points;
@@ -133,7 +142,8 @@ TEST(GlProjection, RandomPointsLandOnTheCorePixelWithTheRaycasterDepth) {
             quads.indices.insert(quads.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
         }
         glPolygonMode(GL_FRONT_AND_BACK, GL_POINT);
-        renderer.draw_mesh(quads);
+        mesh.upload(quads);
+        mesh.draw();
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
         ColorImage color;
         DepthImage depth;
@@ -150,19 +160,21 @@ TEST(GlProjection, RandomPointsLandOnTheCorePixelWithTheRaycasterDepth) {
     }
 }
 
-TEST(GlMethods, FlatTerrainDepthAndLightAreExactForMeshAndBlocks) {
-    gl::HeadlessContext ctx;
+MethodOutput resident(ResidentSurface surface) {
+    MethodOutput out;
+    out.kind = MethodOutputKind::Resident;
+    out.surface = surface;
+    return out;
+}
+
+TEST(Compositor, FlatTerrainDepthAndLightAreExactForMeshAndBlocks) {
     DataSet data = flat_terrain();
-    gl::Renderer renderer(data);
+    gl::HeadlessRenderer renderer(data.terrain, Scene{});
     const Camera cam = looking_down_on_flat();
-    gl::RenderTarget target(cam.width, cam.height);
-    for (gl::TerrainMethod m : {gl::TerrainMethod::Mesh, gl::TerrainMethod::TopFaces, gl::TerrainMethod::Blocks}) {
-        renderer.begin_frame(cam, target);
-        renderer.draw_terrain(m);
+    for (ResidentSurface m : {ResidentSurface::Mesh, ResidentSurface::TopFaces, ResidentSurface::Blocks}) {
         ColorImage color;
         DepthImage depth;
-        target.read_color(color);
-        target.read_depth(depth);
+        renderer.render(resident(m), cam, data.environment, {}, color, &depth);
         int checked = 0;
         for (int row = 0; row < cam.height; row += 3)
             for (int col = 0; col < cam.width; col += 3) {
@@ -172,34 +184,29 @@ TEST(GlMethods, FlatTerrainDepthAndLightAreExactForMeshAndBlocks) {
                 // Inside the mesh's extent by more than a pixel's footprint.
                 if (hit.x < 1 || hit.x > 39 || hit.z < 1 || hit.z > 39) continue;
                 ++checked;
-                EXPECT_NEAR(depth.at(col, row), cam.window_depth(d), 1e-5) << gl::to_string(m) << " " << col << "," << row;
+                EXPECT_NEAR(depth.at(col, row), cam.window_depth(d), 1e-5) << to_string(m) << " " << col << "," << row;
                 const Rgb8 c = color.at(col, row);
                 EXPECT_NEAR(c.r, 200, 1);
                 EXPECT_NEAR(c.g, 100, 1);
                 EXPECT_NEAR(c.b, 50, 1);
             }
-        EXPECT_GT(checked, 20) << gl::to_string(m);
+        EXPECT_GT(checked, 20) << to_string(m);
     }
 }
 
-TEST(GlMethods, FogAndSkyFollowTheStatedFormulas) {
-    gl::HeadlessContext ctx;
+TEST(Compositor, FogAndSkyFollowTheStatedFormulas) {
     DataSet data = flat_terrain({100, 100, 100});
     data.environment.fog_density = 0.02f;
     data.environment.fog_color = {1, 0, 0};
     data.environment.sky_horizon = {0, 1, 0};
     data.environment.sky_zenith = {0, 0, 1};
-    gl::Renderer renderer(data);
+    gl::HeadlessRenderer renderer(data.terrain, Scene{});
     Camera cam = looking_down_on_flat();
     cam.pitch = 0; // the upper half of the image is sky
     cam.eye.y = 110;
-    gl::RenderTarget target(cam.width, cam.height);
-    renderer.begin_frame(cam, target);
-    renderer.draw_terrain(gl::TerrainMethod::Mesh);
     ColorImage color;
     DepthImage depth;
-    target.read_color(color);
-    target.read_depth(depth);
+    renderer.render(resident(ResidentSurface::Mesh), cam, data.environment, {}, color, &depth);
     // Sky pixel: s = sin(elevation) of the pixel-centre ray.
     const int col = 40, sky_row = 3;
     const glm::dvec3 dir = glm::normalize(cam.ray(cam.u_of(col), cam.v_of(sky_row)));

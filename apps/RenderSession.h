@@ -1,0 +1,95 @@
+#pragma once
+// What `render` and `bench` share: the method options of the command line,
+// the data set with its objects (the data set's and --scene's), and one
+// headless GL renderer created when a method first needs it. Any row of the
+// method table (methods/MethodTable.h) is rendered the same way: the method
+// produces its output for the camera, and unless it is an image method run
+// alone (Composite::None), the compositor draws it with the objects and reads
+// the picture back.
+#include "core/Camera.h"
+#include "core/DataSet.h"
+#include "core/Error.h"
+#include "core/Image.h"
+#include "gl/HeadlessRenderer.h"
+#include "methods/MethodTable.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+
+namespace overflight::app {
+
+// The method knobs as given on the command line; defaults from MethodSettings.
+struct MethodOptions {
+    std::string surface = "blocks";    // --surface (voxel)
+    std::string tilt_method = "exact"; // --tilt-method (voxel, tilt projection)
+    bool lod = false;                  // --lod (voxel)
+    double near_step = RaycastOptions{}.near_step_pixels; // --near-step (voxel)
+    int triangles = MethodSettings::kDefaultTriangles;    // --triangles (roam)
+    double error_px = MethodSettings::kDefaultErrorPx;    // --error (quadtree)
+    long long cache_mib = MethodSettings::kDefaultCacheMib; // --cache-mib (quadtree)
+    std::string scene;                 // --scene FILE
+
+    // Validated settings; errors name the option at fault.
+    MethodSettings settings() const;
+};
+void add_method_options(CLI::App& cmd, MethodOptions& options);
+
+// Rethrows an Error of the methods' own terms ("triangle budget", "tile
+// cache", ...) as one naming the command-line option that set it; any other
+// error as it is.
+[[noreturn]] void rethrow_for_option(const Error& e);
+
+// The tiles of a directory written by `overflight tile`, read lazily within
+// `memory_bound` bytes (throws as read_tile_index).
+std::unique_ptr<TileSet> tile_directory_tiles(const std::string& tile_dir, std::size_t memory_bound);
+
+// One rendered view: the images (the method's own for an image method run
+// alone, else the read-back), what the method and the GL steps cost.
+struct RenderedView {
+    const ColorImage* color = nullptr;
+    const DepthImage* depth = nullptr; // null when not asked for
+    MethodOutput output; // what the method produced (valid until its next produce)
+    MethodStats method;
+    gl::FrameTimings gl;
+    bool composited = false; // drawn by the GL compositor
+};
+
+class RenderSession {
+public:
+    // Loads options.scene (Error(path, ...) for a bad scene file). `tile_dir`:
+    // TERRAIN when it is a tile directory (the quadtree reads it lazily).
+    RenderSession(const DataSet& data, const MethodOptions& options, std::string tile_dir = {});
+    ~RenderSession();
+
+    const DataSet& data() const { return data_; }
+    const MethodSettings& settings() const { return settings_; }
+    bool has_objects() const { return !scene_.empty(); }
+    const std::string& tile_dir() const { return tile_dir_; }
+
+    // Builds the method of `row` (errors name the option at fault).
+    std::unique_ptr<TerrainMethod> create(const MethodEntry& row);
+    // Renders `camera` with `method` as `row` composites it, reading the depth
+    // back when `want_depth`. The view's images live until the next call.
+    void render(const MethodEntry& row, TerrainMethod& method, const Camera& camera, bool want_depth,
+                RenderedView& view);
+
+private:
+    const DataSet& data_;
+    MethodSettings settings_;
+    Scene scene_;
+    std::string tile_dir_;
+    MethodContext context_;
+    std::unique_ptr<gl::HeadlessRenderer> gl_;
+    ColorImage color_;
+    DepthImage depth_;
+};
+
+// --stats of one view: the method's figures, its steps under "ms" (CPU and
+// GL, milliseconds) and, when composited, the GL renderer's name.
+nlohmann::json view_stats_json(const MethodSettings& settings, const Camera& camera,
+                               const RenderedView& view);
+
+} // namespace overflight::app

@@ -1,0 +1,97 @@
+#pragma once
+// The one compositor of every terrain method (methods/TerrainMethod.h), used by
+// headless rendering (`render`, `bench`, replays) and by the `fly` window
+// alike: it takes what a method produced for the shared camera, uploads it,
+// draws it with the sky, then draws the objects (and a vehicle) with the
+// Z-buffer, so that they land on the same pixels whichever method drew the
+// ground (Szenberg et al. 1997 sec. 5, Fig. 5).
+//
+//   Images    the color image is loaded into the target ("color_upload"); with
+//             objects its window depth too ("depth_upload"; into an offscreen
+//             target only where objects can be drawn, unless the whole depth
+//             is read back or a vehicle flies); a window's default
+//             framebuffer receives both through a full-screen pass writing
+//             gl_FragDepth ("composite"). The ray cast paints its own sky.
+//   Mesh      depth cleared and the sky drawn ("sky"), the arrays streamed to
+//             GL ("upload") and drawn lit and fogged ("terrain").
+//   Resident  depth cleared, sky, the representation uploaded on first use
+//             (outside any timed step) and drawn ("terrain").
+// Then "objects": the scene's objects and the vehicle, depth-tested.
+//
+// Fog used by every program (the ray caster matches it, raycast/Atmosphere.h):
+//     f = exp(-fog_density * d),  d = |P - eye| (eye-space distance),
+//     color = mix(fog_color, lit, f),  lit = albedo * (ambient + sun_color * max(N.sun_dir, 0)).
+//
+// Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of
+// a Terrain with Objects" (SIBGRAPI 1997), sec. 3, 5 and 7 (Tables 1 and 2);
+// CMSC 23700 hovercraft project sec. 3-4 (vehicle, sun, fog, sky).
+#include "core/Camera.h"
+#include "core/DataSet.h"
+#include "gl/BlockTerrain.h"
+#include "gl/FlightVehicle.h"
+#include "gl/FrameUniforms.h"
+#include "gl/ObjectRenderer.h"
+#include "gl/RenderTarget.h"
+#include "gl/SkyPass.h"
+#include "gl/StepTimer.h"
+#include "gl/StreamedMesh.h"
+#include "gl/TerrainMesh.h"
+#include "methods/TerrainMethod.h"
+
+#include <memory>
+#include <optional>
+
+namespace overflight::gl {
+
+// Where the hovercraft is, if one is drawn (DESIGN sec. 1 heading).
+struct VehiclePose {
+    double x = 0, z = 0, heading = 0;
+};
+
+struct CompositeOptions {
+    bool objects = true;    // Images: false loads the color alone (Szenberg Table 1 "without objects")
+    bool full_depth = false; // Images, offscreen: load every pixel's depth (the caller reads it back)
+    bool wireframe = false;  // Mesh and Resident
+    std::optional<VehiclePose> vehicle;
+};
+
+struct CompositeCounts {
+    long long terrain_primitives = 0; // triangles (points, lines for those representations)
+    long long object_triangles = 0;   // scene objects and the vehicle
+    int chunks_total = 0, chunks_drawn = 0; // the resident mesh's frustum-culled chunks
+};
+
+class Compositor {
+public:
+    // Uploads the scene's objects on `terrain` (which must outlive this). A
+    // GL 4.5 context must be current.
+    Compositor(const Terrain& terrain, const Scene& scene);
+
+    // Draws one frame of `out` for `camera` (validated; its size must be the
+    // target's) into `target`, which is bound here. Throws Error("camera", ...).
+    CompositeCounts draw(const MethodOutput& out, const Camera& camera, const Environment& environment,
+                         RenderTarget& target, StepTimer& timer, const CompositeOptions& options);
+
+    // Uploads a resident representation now (draw() does it on first use).
+    void prepare(ResidentSurface surface);
+
+    const ObjectRenderer& objects() const { return objects_; }
+
+private:
+    void begin(const Camera& camera, const Environment& environment, const RenderTarget& target);
+    void draw_images(const MethodOutput& out, const Camera& camera, RenderTarget& target, StepTimer& timer,
+                     const CompositeOptions& options);
+    long long draw_surface(const MethodOutput& out, const Camera& camera, StepTimer& timer, CompositeCounts& counts);
+
+    const Terrain& terrain_;
+    FrameUniforms frame_;
+    SkyPass sky_;
+    ObjectRenderer objects_;
+    FlightVehicle vehicle_;
+    StreamedMesh streamed_;
+    std::unique_ptr<TerrainMesh> mesh_;
+    std::unique_ptr<BlockTerrain> blocks_;
+    std::unique_ptr<RenderTarget> images_; // a window target's ray-cast images, drawn by a full-screen pass
+};
+
+} // namespace overflight::gl

@@ -1,0 +1,41 @@
+// `voxel`: the Floating Horizon ray caster, parallel and exact, producing the
+// terrain's color and window depth for the compositor.
+//
+// Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of
+// a Terrain with Objects" (SIBGRAPI 1997), sec. 4-6 (Algorithm 1, exact conic
+// projection, depth vector); Guedes, "Integrating Polygonal Objects on Voxel
+// Based Terrain Models" (pitched view planes).
+#include "methods/MethodTable.h"
+#include "raycast/FloatingHorizon.h"
+
+namespace overflight {
+
+namespace {
+
+class VoxelMethod final : public TerrainMethod {
+public:
+    explicit VoxelMethod(const MethodContext& c) : caster_(c.terrain, env_), options_(c.settings.raycast) {}
+    MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
+    MethodOutput produce(const MethodView& view, MethodStats& stats) override {
+        stats.clear();
+        env_ = view.environment;
+        RaycastStats s;
+        caster_.render(view.camera, options_, color_, depth_, &s);
+        stats.steps.push_back({"raycast", s.ms_total});
+        stats.raycast = s;
+        return {MethodOutputKind::Images, &color_, &depth_};
+    }
+
+private:
+    Environment env_; // before caster_, which reads it every frame
+    FloatingHorizon caster_;
+    RaycastOptions options_;
+    ColorImage color_;
+    DepthImage depth_;
+};
+
+} // namespace
+
+std::unique_ptr<TerrainMethod> make_voxel_method(const MethodContext& c) { return std::make_unique<VoxelMethod>(c); }
+
+} // namespace overflight
