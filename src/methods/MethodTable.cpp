@@ -18,6 +18,7 @@ std::unique_ptr<TerrainMethod> make_segments_method(const MethodContext&);
 std::unique_ptr<TerrainMethod> make_blocks_method(const MethodContext&);
 std::unique_ptr<TerrainMethod> make_roam_method(const MethodContext&);
 std::unique_ptr<TerrainMethod> make_quadtree_method(const MethodContext&);
+std::unique_ptr<TerrainMethod> make_raymarch_method(const MethodContext&);
 
 const std::vector<MethodEntry>& terrain_methods() {
     using C = Composite;
@@ -44,6 +45,7 @@ const std::vector<MethodEntry>& terrain_methods() {
          make_roam_method},
         {"quadtree", "Roettger quadtree over overlapping tiles, --error pixels (Zamri)", true, true, C::Objects, true,
          make_quadtree_method},
+        {"raymarch", "brute-force per-pixel ray marcher (reference)", false, false, C::None, false, make_raymarch_method},
     };
     return table;
 }

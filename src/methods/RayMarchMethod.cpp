@@ -1,0 +1,45 @@
+// `raymarch`: the brute-force per-pixel ray marcher, the reference the Floating
+// Horizon is checked against (slow, but every pixel is traced on its own).
+//
+// Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of
+// a Terrain with Objects" (SIBGRAPI 1997), sec. 4 (the plain ray casting the
+// Floating Horizon speeds up); DESIGN sec. 8 (reference implementations).
+#include "methods/MethodTable.h"
+#include "raycast/RayMarcher.h"
+
+#include <chrono>
+
+namespace overflight {
+
+namespace {
+
+class RayMarchMethod final : public TerrainMethod {
+public:
+    explicit RayMarchMethod(const MethodContext& c) : marcher_(c.terrain, env_), surface_(c.settings.raycast.surface) {}
+    MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
+    MethodOutput produce(const MethodView& view, MethodStats& stats) override {
+        stats.clear();
+        env_ = view.environment;
+        const auto t0 = std::chrono::steady_clock::now();
+        marcher_.render(view.camera, surface_, color_, depth_);
+        stats.steps.push_back(
+            {"raymarch", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+        stats.rays = (long long)view.camera.width * view.camera.height;
+        return {MethodOutputKind::Images, &color_, &depth_};
+    }
+
+private:
+    Environment env_; // before marcher_, which reads it every frame
+    RayMarcher marcher_;
+    SurfaceModel surface_;
+    ColorImage color_;
+    DepthImage depth_;
+};
+
+} // namespace
+
+std::unique_ptr<TerrainMethod> make_raymarch_method(const MethodContext& c) {
+    return std::make_unique<RayMarchMethod>(c);
+}
+
+} // namespace overflight
