@@ -1,11 +1,13 @@
 #pragma once
 // Objects placed on a terrain (DESIGN sec. 5): houses, vehicles, towers, boxes,
 // models and transmission lines, in world X/Z. Plain data: the io layer reads
-// them from a `map` or `--scene` file, the gl layer draws them.
+// them from a `map` or `--scene` file (models included), the gl layer draws them.
 #include "core/Image.h"
+#include "core/MeshArrays.h"
 
 #include <glm/vec2.hpp>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +27,9 @@ struct SceneObject {
     double scale = 1;          // for models
     Rgb8 color{200, 200, 200};
     std::string model_path;    // for kind Model: OBJ or glTF, resolved against the scene file's folder
+    // For kind Model: its triangles in the model's own units and axes, read by
+    // the io layer with the scene (load_scene_models), shared between objects.
+    std::shared_ptr<const MeshArrays> model;
 };
 
 struct TransmissionLine {

@@ -3,7 +3,6 @@
 
 #include "core/Error.h"
 #include "gl/Catenary.h"
-#include "io/ModelLoader.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -155,7 +154,8 @@ ObjectGeometry build_object_geometry(const Scene& scene, const Terrain& t) {
         case ObjectKind::Vehicle: add_vehicle(g.triangles, f, o); break;
         case ObjectKind::Tower: add_tower(g, f, o.height, o.color); break;
         case ObjectKind::Model: {
-            const MeshArrays model = load_model(o.model_path, o.color);
+            if (!o.model) throw Error(o.model_path, "the model was not loaded with the scene");
+            const MeshArrays& model = *o.model;
             const auto base = std::uint32_t(g.triangles.positions.size());
             for (std::size_t i = 0; i < model.positions.size(); ++i) {
                 const glm::dvec3 p = glm::dvec3(model.positions[i]) * o.scale;

@@ -4,6 +4,7 @@
 
 #include "core/Error.h"
 #include "io/Files.h"
+#include "io/ModelLoader.h"
 #include "io/SceneToml.h"
 
 #include <filesystem>
@@ -57,7 +58,9 @@ MapFile parse_map(std::string_view text, const std::string& subject, const std::
 MapFile load_map(const std::string& path) {
     const auto bytes = read_file_bytes(path);
     const std::string text(bytes.begin(), bytes.end());
-    return parse_map(text, path, std::filesystem::path(path).parent_path().string());
+    MapFile map = parse_map(text, path, std::filesystem::path(path).parent_path().string());
+    load_scene_models(map.scene);
+    return map;
 }
 
 std::string format_map(const MapFile& map) {

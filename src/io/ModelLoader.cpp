@@ -238,4 +238,15 @@ MeshArrays load_model(const std::string& path, Rgb8 fallback) {
     return mesh;
 }
 
+void load_scene_models(Scene& scene) {
+    std::map<std::pair<std::string, std::uint32_t>, std::shared_ptr<const MeshArrays>> loaded;
+    for (SceneObject& o : scene.objects) {
+        if (o.kind != ObjectKind::Model || o.model) continue;
+        const auto key = std::make_pair(o.model_path, std::uint32_t(o.color.r) << 16 | std::uint32_t(o.color.g) << 8 | o.color.b);
+        auto& model = loaded[key];
+        if (!model) model = std::make_shared<const MeshArrays>(load_model(o.model_path, o.color));
+        o.model = model;
+    }
+}
+
 } // namespace overflight

@@ -6,6 +6,7 @@
 // Based on: Szenberg et al. 1997 sec. 5 and 7 (objects described by polygons
 // and lines, drawn by OpenGL's Z-buffer over the terrain).
 #include "core/MeshArrays.h"
+#include "core/Scene.h"
 
 #include <string>
 
@@ -18,5 +19,9 @@ namespace overflight {
 // Throws Error(path, problem) when the file is missing, unreadable, malformed,
 // of an unknown type, or holds no triangles.
 MeshArrays load_model(const std::string& path, Rgb8 fallback = {200, 200, 200});
+
+// Loads the model of every `model` object of `scene` that has none yet (each
+// file and fallback color once). Throws as load_model.
+void load_scene_models(Scene& scene);
 
 } // namespace overflight

@@ -3,6 +3,7 @@
 #include "io/SceneFile.h"
 
 #include "io/Files.h"
+#include "io/ModelLoader.h"
 #include "io/SceneToml.h"
 
 #include <filesystem>
@@ -20,7 +21,9 @@ Scene parse_scene(std::string_view text, const std::string& subject, const std::
 Scene load_scene(const std::string& path) {
     const auto bytes = read_file_bytes(path);
     const std::string text(bytes.begin(), bytes.end());
-    return parse_scene(text, path, std::filesystem::path(path).parent_path().string());
+    Scene scene = parse_scene(text, path, std::filesystem::path(path).parent_path().string());
+    load_scene_models(scene);
+    return scene;
 }
 
 } // namespace overflight

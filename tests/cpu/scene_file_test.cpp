@@ -59,9 +59,10 @@ sag = 4.0
     EXPECT_DOUBLE_EQ(s.lines[0].sag, 4.0);
 }
 
-TEST(SceneFile, ModelPathIsRelativeToTheSceneFile) {
+TEST(SceneFile, ModelPathIsRelativeToTheSceneFileAndTheModelIsLoadedWithIt) {
     test::ScratchDir dir;
-    std::filesystem::create_directories(dir.path / "scenes");
+    std::filesystem::create_directories(dir.path / "scenes/models");
+    std::ofstream(dir / "scenes/models/tree.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
     const std::string path = dir / "scenes/town.toml";
     std::ofstream(path) << "[[object]]\nkind = \"model\"\nx = 1\nz = 2\nscale = 2.5\nfile = \"models/tree.obj\"\n"
                            "[[object]]\nkind = \"vehicle\"\nx = 3\nz = 4\n";
@@ -70,7 +71,22 @@ TEST(SceneFile, ModelPathIsRelativeToTheSceneFile) {
     EXPECT_EQ(s.objects[0].kind, ObjectKind::Model);
     EXPECT_EQ(s.objects[0].model_path, (dir.path / "scenes/models/tree.obj").string());
     EXPECT_DOUBLE_EQ(s.objects[0].scale, 2.5);
+    ASSERT_TRUE(s.objects[0].model);
+    EXPECT_EQ(s.objects[0].model->triangle_count(), 2u);
     EXPECT_EQ(s.objects[1].kind, ObjectKind::Vehicle);
+    EXPECT_FALSE(s.objects[1].model);
+}
+
+TEST(SceneFile, AMissingModelFailsWhenTheSceneIsRead) {
+    test::ScratchDir dir;
+    const std::string path = dir / "town.toml";
+    std::ofstream(path) << "[[object]]\nkind = \"model\"\nx = 1\nz = 2\nfile = \"nowhere.obj\"\n";
+    try {
+        load_scene(path);
+        FAIL() << "a scene with a missing model loaded";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.subject(), dir / "nowhere.obj");
+    }
 }
 
 TEST(SceneFile, EmptyFileIsAnEmptyScene) { EXPECT_TRUE(parse_scene("", "scene.toml").empty()); }
