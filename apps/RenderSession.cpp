@@ -17,23 +17,9 @@ MethodSettings MethodOptions::settings() const {
     s.raycast.near_step_pixels = near_step;
     s.triangles = triangles;
     s.error_px = error_px;
-    try {
-        s.cache_bytes = tile_cache_bytes(cache_mib);
-        s.validate();
-    } catch (const Error& e) {
-        rethrow_for_option(e);
-    }
+    s.cache_bytes = tile_cache_bytes(cache_mib);
+    s.validate();
     return s;
-}
-
-void rethrow_for_option(const Error& e) {
-    static const std::pair<std::string_view, const char*> options[] = {
-        {"triangle budget", "--triangles"}, {"screen-space error", "--error"}, {"tile cache", "--cache-mib"},
-        {"near step", "--near-step"},       {"distance LOD", "--lod"},
-    };
-    for (const auto& [subject, option] : options)
-        if (e.subject() == subject) throw Error(option, e.subject() + " " + e.problem());
-    throw e;
 }
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
@@ -84,14 +70,10 @@ RenderSession::RenderSession(const DataSet& data, const MethodOptions& options, 
 RenderSession::~RenderSession() = default;
 
 std::unique_ptr<TerrainMethod> RenderSession::create(const MethodEntry& row) {
-    try {
-        std::unique_ptr<TerrainMethod> method = row.create(context_);
-        if (!(method->output_kind() == MethodOutputKind::Images && row.composite == Composite::None) && !gl_)
-            gl_ = std::make_unique<gl::HeadlessRenderer>(data_.terrain, scene_);
-        return method;
-    } catch (const Error& e) {
-        rethrow_for_option(e);
-    }
+    std::unique_ptr<TerrainMethod> method = row.create(context_);
+    if (!(method->output_kind() == MethodOutputKind::Images && row.composite == Composite::None) && !gl_)
+        gl_ = std::make_unique<gl::HeadlessRenderer>(data_.terrain, scene_);
+    return method;
 }
 
 void RenderSession::render(const MethodEntry& row, TerrainMethod& method, const Camera& camera, bool want_depth,

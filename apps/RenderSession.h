@@ -8,7 +8,6 @@
 // the picture back.
 #include "core/Camera.h"
 #include "core/DataSet.h"
-#include "core/Error.h"
 #include "core/Image.h"
 #include "gl/HeadlessRenderer.h"
 #include "methods/MethodTable.h"
@@ -32,15 +31,10 @@ struct MethodOptions {
     long long cache_mib = MethodSettings::kDefaultCacheMib; // --cache-mib (quadtree)
     std::string scene;                 // --scene FILE
 
-    // Validated settings; errors name the option at fault.
+    // Validated settings; throws Error in the methods' terms (OptionErrors.h).
     MethodSettings settings() const;
 };
 void add_method_options(CLI::App& cmd, MethodOptions& options);
-
-// Rethrows an Error of the methods' own terms ("triangle budget", "tile
-// cache", ...) as one naming the command-line option that set it; any other
-// error as it is.
-[[noreturn]] void rethrow_for_option(const Error& e);
 
 // The tiles of a directory written by `overflight tile`, read lazily within
 // `memory_bound` bytes (throws as read_tile_index).
@@ -69,7 +63,7 @@ public:
     bool has_objects() const { return !scene_.empty(); }
     const std::string& tile_dir() const { return tile_dir_; }
 
-    // Builds the method of `row` (errors name the option at fault).
+    // Builds the method of `row`; throws what the method's factory throws.
     std::unique_ptr<TerrainMethod> create(const MethodEntry& row);
     // Renders `camera` with `method` as `row` composites it, reading the depth
     // back when `want_depth`. The view's images live until the next call.

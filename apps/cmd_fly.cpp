@@ -118,11 +118,7 @@ void run_fly(const FlyOptions& o) {
     for (const std::string& p : o.presses) presses.push_back(parse_press(p));
 
     MethodSettings settings;
-    try {
-        settings.cache_bytes = tile_cache_bytes(o.cache_mib);
-    } catch (const Error& e) {
-        rethrow_for_option(e);
-    }
+    settings.cache_bytes = tile_cache_bytes(o.cache_mib);
     DataSet data = load_terrain_lazily(o.terrain);
     if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
     MethodContext methods{data.terrain, settings, {}};

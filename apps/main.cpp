@@ -1,5 +1,6 @@
 // overflight: one program, one subcommand per job (DESIGN sec. 6).
 #include "Commands.h"
+#include "OptionErrors.h"
 #include "core/Error.h"
 
 #include <cstdio>
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const overflight::Error& e) {
-        std::fprintf(stderr, "overflight: %s\n", e.what());
+        std::fprintf(stderr, "overflight: %s\n", overflight::app::in_option_terms(e).what());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "overflight: %s\n", e.what());

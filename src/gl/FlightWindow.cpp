@@ -66,7 +66,7 @@ public:
     MethodSet(const MethodContext& context, const std::string& first) : context_(context) {
         const MethodEntry* entry = find_terrain_method(first);
         if (!entry)
-            throw Error("--method", "'" + first + "' is not a terrain method (known: " + terrain_method_names(", ") + ")");
+            throw Error("terrain method", "'" + first + "' is not one (known: " + terrain_method_names(", ") + ")");
         rows_.push_back(entry);
         for (const MethodEntry& m : terrain_methods())
             if (m.fly && &m != entry) rows_.push_back(&m);

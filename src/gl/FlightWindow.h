@@ -65,7 +65,7 @@ using ScreenshotSink = std::function<void(const ColorImage& image, int index)>;
 
 // Opens the window and runs until q, the window is closed, or the session's
 // frames are done. Methods are built from the table with `methods`. Throws
-// Error("window", ...) if no window can be opened, Error("--method", ...) for a
+// Error("window", ...) if no window can be opened, Error("terrain method", ...) for a
 // first method not in the table, and what the session and methods throw.
 FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& options, const MethodContext& methods,
                                const ScreenshotSink& screenshot);

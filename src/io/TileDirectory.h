@@ -111,7 +111,7 @@ int overview_stride(int rows, int cols, int max_side);
 // Tiles `data.terrain` into `dir` (created if missing), carrying
 // data.info's georeferencing (without it, a local metric frame whose
 // projected X is world X and projected Y is -world Z). Throws
-// Error("--tile-size", ...) for a size that is not 2^k+1 >= 3, Error(dir or a
+// Error("tile size", ...) for a size that is not 2^k+1 >= 3, Error(dir or a
 // tile path, ...) for I/O failures.
 TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir, const TileWriteOptions& options);
 

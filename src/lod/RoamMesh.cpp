@@ -301,7 +301,7 @@ void RoamMesh::split(std::int32_t t, bool forced) {
 
 RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<glm::dvec2> focus) {
     camera.validate();
-    if (budget < 2) throw Error("--triangles", "budget " + std::to_string(budget) + " is below 2 triangles");
+    if (budget < 2) throw Error("triangle budget", std::to_string(budget) + " is below 2");
     reserve_for(budget);
     node_count_ = vertex_count_ = 0;
     for (auto& bucket : buckets_) bucket.clear();

@@ -103,7 +103,7 @@ public:
     // triangles (>= 2). The result has between budget - 1 and budget triangles
     // unless every visible triangle reached the finest level first. `focus`
     // is the world (x, z) of the vehicle. Throws Error("camera", ...) for an
-    // invalid camera and Error("--triangles", ...) for a budget < 2.
+    // invalid camera and Error("triangle budget", ...) for a budget < 2.
     RoamStats tessellate(const Camera& camera, int budget, std::optional<glm::dvec2> focus = std::nullopt);
 
     // The current mesh as plain arrays (positions in world coordinates,

@@ -12,7 +12,7 @@
 namespace overflight {
 
 double rottger_c(double error_px, double focal_px, double min_resolution) {
-    if (!(error_px > 0) || !std::isfinite(error_px)) throw Error("--error", "must be a positive number of pixels");
+    if (!(error_px > 0) || !std::isfinite(error_px)) throw Error("screen-space error", "must be a positive number of pixels");
     return focal_px / (error_px * min_resolution);
 }
 

@@ -51,7 +51,7 @@ int TileGrid::coarsest_level() const {
 
 TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
     if (!is_pow2_plus1(tile_size) || tile_size < 3)
-        throw Error("--tile-size", std::to_string(tile_size) + " is not 2^k+1 (3, 5, 9, ..., 257, 513, ...)");
+        throw Error("tile size", std::to_string(tile_size) + " is not 2^k+1 (3, 5, 9, ..., 257, 513, ...)");
     const int padded = next_pow2_plus1(std::max(terrain.rows(), terrain.cols()));
     TileGrid g;
     g.tile_size = std::min(tile_size, padded);

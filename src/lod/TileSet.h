@@ -117,7 +117,7 @@ std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron,
 // into tiles of tile_size (clamped to that square); tiles wholly outside the
 // source are flagged 0. Padding repeats the edge samples with darkened colors
 // (as pad_to_pow2_plus1 does) without copying the terrain. Throws
-// Error("--tile-size", ...) when tile_size is not 2^k+1 >= 3.
+// Error("tile size", ...) when tile_size is not 2^k+1 >= 3.
 TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size);
 // Loader that cuts tiles out of `terrain` (which must outlive it); normals
 // come from Terrain::sample_normal of the whole terrain, so they agree at seams.

@@ -19,7 +19,7 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
     const auto t0 = std::chrono::steady_clock::now();
     camera.validate();
     if (camera.projection != Projection::Shear)
-        throw Error("--projection", "voxel-literal implements the papers' vertical view plane only (use shear)");
+        throw Error("projection", "voxel-literal implements the papers' vertical view plane only (use shear)");
     const int W = camera.width, H = camera.height;
     color.resize(W, H);
     depth.resize(W, H);

@@ -22,7 +22,7 @@
 
 namespace overflight {
 
-// Throws Error("--projection", ...) for a tilt camera, Error("camera", ...) for a bad one.
+// Throws Error("projection", ...) for a tilt camera, Error("camera", ...) for a bad one.
 void render_floating_horizon_literal(const Terrain& terrain, const Environment& env, const Camera& camera,
                                      SurfaceModel surface, ColorImage& color, DepthImage& depth,
                                      RaycastStats* stats = nullptr);

@@ -51,7 +51,7 @@ Environment view_environment(const Environment& env, const Terrain& terrain, boo
 
 class FlightSession {
 public:
-    // Places the vehicle (Error("--at", ...) for a start off the map) and the
+    // Places the vehicle (Error("vehicle start", ...) for a start off the map) and the
     // camera. `terrain` must outlive the session.
     FlightSession(const Terrain& terrain, const Environment& environment, const FlightSessionOptions& options);
 

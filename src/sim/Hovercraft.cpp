@@ -137,9 +137,9 @@ Hovercraft::Hovercraft(const Terrain& terrain, double x, double z, double headin
     : terrain_(&terrain), params_(params) {
     if (!std::isfinite(x) || !std::isfinite(z) || x < 0 || z < 0 || x > terrain.width() ||
         z > terrain.depth())
-        throw Error("--at", "position " + number(x) + "," + number(z) + " is outside the terrain (X 0.." +
+        throw Error("vehicle start", "position " + number(x) + "," + number(z) + " is outside the terrain (X 0.." +
                                 number(terrain.width()) + ", Z 0.." + number(terrain.depth()) + ")");
-    if (!std::isfinite(heading)) throw Error("--heading", "heading must be a finite number of degrees");
+    if (!std::isfinite(heading)) throw Error("vehicle heading", "must be a finite number of degrees");
     state_.x = x;
     state_.z = z;
     state_.heading = wrap_heading(heading);

@@ -79,8 +79,8 @@ double wrap_heading(double degrees);
 // mesh surface.
 class Hovercraft {
 public:
-    // Throws Error("--at", ...) if (x, z) is outside the map or not finite, and
-    // Error("--heading", ...) if the heading is not finite.
+    // Throws Error("vehicle start", ...) if (x, z) is outside the map or not finite, and
+    // Error("vehicle heading", ...) if the heading is not finite.
     Hovercraft(const Terrain& terrain, double x, double z, double heading,
                const HovercraftParams& params = {});
 

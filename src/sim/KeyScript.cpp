@@ -19,13 +19,13 @@ ScriptedPress parse_press(std::string_view spec) {
     const std::string quoted = "'" + std::string(spec) + "'";
     const auto colon = spec.find(':');
     if (colon == std::string_view::npos)
-        throw Error("--press", quoted + " is not KEY:FROM-TO (e.g. accelerate:0-100)");
+        throw Error("key press", quoted + " is not KEY:FROM-TO (e.g. accelerate:0-100)");
     const std::string_view name = spec.substr(0, colon);
     const auto key = key_from_name(name);
     if (!key) {
         std::string names;
         for (int i = 0; i < kKeyCount; ++i) names += std::string(i ? ", " : "") + key_name(Key(i));
-        throw Error("--press", "unknown key '" + std::string(name) + "' (keys: " + names + ")");
+        throw Error("key press", "unknown key '" + std::string(name) + "' (keys: " + names + ")");
     }
     const std::string_view range = spec.substr(colon + 1);
     const auto dash = range.find('-');
@@ -33,8 +33,8 @@ ScriptedPress parse_press(std::string_view spec) {
     p.key = *key;
     if (dash == std::string_view::npos || !parse_count(range.substr(0, dash), p.from) ||
         !parse_count(range.substr(dash + 1), p.to))
-        throw Error("--press", quoted + ": FROM-TO must be two non-negative whole numbers, e.g. 0-100");
-    if (p.to <= p.from) throw Error("--press", quoted + ": TO must be greater than FROM (the end is excluded)");
+        throw Error("key press", quoted + ": FROM-TO must be two non-negative whole numbers, e.g. 0-100");
+    if (p.to <= p.from) throw Error("key press", quoted + ": TO must be greater than FROM (the end is excluded)");
     return p;
 }
 

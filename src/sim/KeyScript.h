@@ -18,7 +18,7 @@ struct ScriptedPress {
     long long to = 0;   // first step/frame no longer held (> from)
 };
 
-// Parses "KEY:FROM-TO" (e.g. "accelerate:0-100"). Throws Error("--press", ...)
+// Parses "KEY:FROM-TO" (e.g. "accelerate:0-100"). Throws Error("key press", ...)
 // for an unknown key, a missing or negative bound, or TO <= FROM.
 ScriptedPress parse_press(std::string_view spec);
 

@@ -80,7 +80,7 @@ TEST(KeyScript, BadSpecsNameTheOption) {
             parse_press(bad);
             ADD_FAILURE() << "accepted";
         } catch (const Error& e) {
-            EXPECT_EQ(e.subject(), "--press");
+            EXPECT_EQ(e.subject(), "key press");
         }
     }
 }
