@@ -172,6 +172,22 @@ void check_heights(const std::string& path, const TileGrid& g, int r, int c, con
                               " the range " + metres(want_lo) + " .. " + metres(want_hi) + " index.json gives the tile");
 }
 
+// Samples of a full tile beyond the source are its padding: the clamped
+// edge sample with a darkened color (cut_tile). Anything else means the
+// index's source size is not the one the tiles were cut from.
+void check_padding(const std::string& path, const TileGrid& g, int r, int c, const Terrain& samples) {
+    const int r0 = r * g.stride(), c0 = c * g.stride();
+    for (int i = 0; i < samples.rows(); ++i)
+        for (int j = 0; j < samples.cols(); ++j) {
+            const int si = std::min(r0 + i, g.source_rows - 1) - r0, sj = std::min(c0 + j, g.source_cols - 1) - c0;
+            if (si == i && sj == j) continue;
+            const Rgb8 edge = samples.color(si, sj), pad = samples.color(i, j);
+            if (samples.raw(i, j) != samples.raw(si, sj) || pad.r != edge.r / 2 || pad.g != edge.g / 2 || pad.b != edge.b / 2)
+                throw Error(path, "samples beyond the " + std::to_string(g.source_rows) + "x" + std::to_string(g.source_cols) +
+                                      " source index.json gives are not its padding");
+        }
+}
+
 void read_d2(GDALDatasetH ds, const std::string& path, int n, int reduce, std::vector<float>& d2) {
     d2.resize(std::size_t(n) * std::size_t(n));
     read_bands(ds, path, n, n, 1, GDT_Float32, d2.data(), reduce);
@@ -364,6 +380,7 @@ TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c,
     read_bands(heights.get(), h_path, n, n, 1, GDT_UInt16, t.samples.heights().data(), step);
     check_heights(h_path, g, r, c, t.samples, level == 0);
     read_colors(colors.get(), c_path, t.samples, step);
+    if (level == 0) check_padding(h_path, g, r, c, t.samples);
     if (with_d2) read_d2(d2.get(), d_path, n, step / 2, t.d2);
     if (with_apron) t.normals = tile_normals(t.samples, read_apron(apron.get(), a_path, full), g, r, c);
     return t;

@@ -188,6 +188,11 @@ TEST(TileFolderRobustness, CorruptIndexValuesNameTheIndex) {
         EXPECT_EQ(info_error(dir), "overflight: " + dir + "/index.json: " + problem + "\n");
         write_bytes(fs::path(dir) / "index.json", original);
     }
+    // A source one row smaller still fits the grid and its flags, but tile
+    // row 2 then holds data where the padding should be.
+    edit_index(dir, [](json& j) { j["source_rows"] = 69; });
+    EXPECT_EQ(info_error(dir),
+              "overflight: " + dir + "/r2_c0.tif: samples beyond the 69x100 source index.json gives are not its padding\n");
     write_bytes(fs::path(dir) / "index.json", original.substr(0, original.size() / 2));
     EXPECT_EQ(info_error(dir).rfind("overflight: " + dir + "/index.json: malformed JSON: ", 0), 0u);
     write_bytes(fs::path(dir) / "index.json", original);
