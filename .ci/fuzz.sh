@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (fuzz/*.cpp) with clang in their own build
 # directory and runs each for SECONDS (default 20) from a seed corpus written
-# here, failing on the first crash, leak, sanitizer report or timeout.
+# here and the files under fuzz/corpus/HARNESS (real inputs, e.g. index.json
+# files made by `overflight tile`), failing on the first crash, leak,
+# sanitizer report or timeout.
 #
 #   .ci/fuzz.sh [SECONDS]        env: FUZZ_BUILD (default build-fuzz), JOBS (default 1)
 set -euo pipefail
@@ -9,7 +11,7 @@ set -euo pipefail
 seconds="${1:-20}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${FUZZ_BUILD:-$root/build-fuzz}"
-harnesses=(fuzz_pgm fuzz_ppm fuzz_map)
+harnesses=(fuzz_pgm fuzz_ppm fuzz_map fuzz_tile_index)
 
 # Everything is instrumented for coverage (fuzzer-no-link), not only the
 # harnesses: the parsers under test live in overflight_io.
@@ -22,7 +24,7 @@ cmake --build "$build" --target "${harnesses[@]}" -j"${JOBS:-1}"
 
 seeds="$build/seeds"
 rm -rf "$seeds"
-mkdir -p "$seeds/fuzz_pgm" "$seeds/fuzz_ppm" "$seeds/fuzz_map"
+mkdir -p "$seeds/fuzz_pgm" "$seeds/fuzz_ppm" "$seeds/fuzz_map" "$seeds/fuzz_tile_index"
 printf 'P5\n3 2\n255\n\x00\x01\x02\xfd\xfe\xff' >"$seeds/fuzz_pgm/8bit"
 printf 'P5\n# comment\n2 2\n65535\n\x01\x02\xff\xff\x80\x00\x00\xff' >"$seeds/fuzz_pgm/16bit"
 printf 'P5 1 1 256\n\x01\x00' >"$seeds/fuzz_pgm/maxval256"
@@ -67,8 +69,10 @@ for h in "${harnesses[@]}"; do
   mkdir -p "$corpus"
   echo "== $h for ${seconds}s"
   # The fuzzer writes crash-* reproducers into the build directory on failure.
+  stored=()
+  [ -d "$root/fuzz/corpus/$h" ] && stored=("$root/fuzz/corpus/$h")
   if ! (cd "$build" && "$build/fuzz/$h" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
-        -rss_limit_mb=2048 -print_final_stats=1 "$corpus" "$seeds/$h" 2>"$build/$h.log"); then
+        -rss_limit_mb=2048 -print_final_stats=1 "$corpus" "$seeds/$h" "${stored[@]}" 2>"$build/$h.log"); then
     tail -n 40 "$build/$h.log"
     echo "FAIL: $h crashed (reproducer in $build)"
     status=1

@@ -1,15 +1,27 @@
 // `overflight tile TERRAIN -o DIR [--tile-size 2^k+1]` (DESIGN sec. 4, 6;
-// Zamri, seed 001, "Data tiling"): overlapping tiles, one GeoTIFF per tile,
+// Zamri, "Data tiling"): overlapping tiles, one GeoTIFF per tile,
 // DIR/index.json. The format is described in io/TileDirectory.h.
 #include "Commands.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "io/TileDirectory.h"
+#include "lod/TileSet.h"
 
+#include <csignal>
 #include <cstdio>
 #include <memory>
 
 namespace overflight::app {
+
+namespace {
+
+// Set by SIGINT / SIGTERM: the tiler stops after the tile it is writing, so
+// that it exits with one line and removes its temporary file; a re-run
+// resumes.
+volatile std::sig_atomic_t g_stop = 0;
+void request_stop(int) { g_stop = 1; }
+
+} // namespace
 
 void add_tile_command(CLI::App& app) {
     struct Args {
@@ -28,6 +40,11 @@ void add_tile_command(CLI::App& app) {
         TileWriteOptions o;
         o.tile_size = args->tile_size;
         o.terminal_progress = true;
+        // Röttger's measures for the reduced levels: io does not depend on lod.
+        o.measures = rottger_tile_measures();
+        o.on_tile = [](int, int) { return g_stop == 0; };
+        std::signal(SIGINT, request_stop);
+        std::signal(SIGTERM, request_stop);
         const TileWriteReport r = write_tile_directory(data, args->out, o);
         std::printf("%s: %dx%d tiles of %d samples, %d written, %d already done, %d without data (flag 0)\n",
                     args->out.c_str(), r.index.grid.tile_rows, r.index.grid.tile_cols, r.index.grid.tile_size, r.written,

@@ -75,7 +75,9 @@ int next_pow2_plus1(int n) {
     return p + 1;
 }
 
-bool is_pow2_plus1(int n) { return n >= 2 && next_pow2_plus1(n) == n; }
+// A bit test rather than next_pow2_plus1(n) == n, which doubles past INT_MAX
+// for n above 2^30 + 1 (a size read from a file may be anything).
+bool is_pow2_plus1(int n) { return n >= 2 && ((n - 1) & (n - 2)) == 0; }
 
 Terrain pad_to_pow2_plus1(const Terrain& t) {
     const int size = next_pow2_plus1(std::max(t.rows(), t.cols()));

@@ -3,6 +3,7 @@
 #include "core/Error.h"
 
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -13,6 +14,17 @@
 namespace overflight {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// strerror() as the tail of a one-line message: "no space left on device".
+std::string errno_text(int err) {
+    std::string s = std::strerror(err);
+    if (!s.empty()) s[0] = char(std::tolower(static_cast<unsigned char>(s[0])));
+    return s;
+}
+
+} // namespace
 
 std::vector<std::uint8_t> read_file_bytes(const std::string& path) {
     std::error_code ec;
@@ -52,6 +64,18 @@ void write_atomically(const std::string& path, const std::function<void(const st
         fs::remove(temp, ignored);
         throw Error(path, "cannot write: " + ec.message());
     }
+}
+
+void write_file_atomically(const std::string& path, const void* data, std::size_t size) {
+    write_atomically(path, [&](const std::string& temp) {
+        FILE* f = std::fopen(temp.c_str(), "wb");
+        if (!f) throw Error(path, "cannot write: " + errno_text(errno));
+        errno = 0;
+        const bool written = std::fwrite(data, 1, size, f) == size && std::fflush(f) == 0;
+        const int write_errno = errno;
+        const bool closed = std::fclose(f) == 0;
+        if (!written || !closed) throw Error(path, "cannot write: " + errno_text(!written ? write_errno : errno));
+    });
 }
 
 } // namespace overflight

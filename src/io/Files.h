@@ -20,4 +20,9 @@ std::vector<std::uint8_t> read_file_bytes(const std::string& path);
 // existing file at `path` is untouched.
 void write_atomically(const std::string& path, const std::function<void(const std::string& temp_path)>& write);
 
+// Writes `size` bytes to `path` through write_atomically, checking every
+// write, the flush and the close (a full disk often shows only there):
+// Error(path, "cannot write: no space left on device") and the like.
+void write_file_atomically(const std::string& path, const void* data, std::size_t size);
+
 } // namespace overflight

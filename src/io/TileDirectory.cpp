@@ -1,27 +1,24 @@
-// Based on: Zamri, seed 001, "Data tiling" (2^n+1 padding, overlapping
-// 2^k+1 tiles, existence flags, one file per tile). GDAL writes the GeoTIFFs.
+// Based on: Zamri, "Data tiling" (2^n+1 padding, overlapping 2^k+1 tiles,
+// existence flags, one file per tile). GDAL writes the GeoTIFFs
+// (io/TileRasters.h); the tiling model is core/TileGrid.h.
 #include "io/TileDirectory.h"
 
 #include "core/Error.h"
 #include "io/Files.h"
 #include "io/Gdal.h"
+#include "io/TileRasters.h"
 
-#include <cpl_conv.h>
-#include <cpl_string.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <memory>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 namespace overflight {
 
@@ -29,19 +26,12 @@ namespace {
 
 enum class TileFile { Heights, Colors, Apron, D2 };
 
-std::string tile_name(int r, int c, TileFile f) {
-    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif", "_d2.tif"};
-    return "r" + std::to_string(r) + "_c" + std::to_string(c) + suffix[int(f)];
-}
-
 std::string tile_path(const std::string& dir, int r, int c, TileFile f) {
-    return (fs::path(dir) / tile_name(r, c, f)).string();
+    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif", "_d2.tif"};
+    return (fs::path(dir) / ("r" + std::to_string(r) + "_c" + std::to_string(c) + suffix[int(f)])).string();
 }
 
-const char* const kOverviewHeights = "overview.tif";
-const char* const kOverviewColors = "overview_rgb.tif";
-// Röttger's C the stored d2 is computed for: TileSet's default.
-const double kD2MinResolution = 4.0;
+std::string index_path(const std::string& dir) { return (fs::path(dir) / "index.json").string(); }
 
 std::array<double, 6> tile_geotransform(const TileIndex& ix, int r, int c) {
     std::array<double, 6> gt = ix.geotransform;
@@ -51,160 +41,15 @@ std::array<double, 6> tile_geotransform(const TileIndex& ix, int r, int c) {
     return gt;
 }
 
-json index_to_json(const TileIndex& ix) {
-    const TileGrid& g = ix.grid;
-    json exists = json::array(), lo = json::array(), hi = json::array();
-    json roughness = g.roughness.empty() ? json(nullptr) : json::array();
-    for (int r = 0; r < g.tile_rows; ++r) {
-        if (!g.roughness.empty()) {
-            json rr = json::array();
-            for (int c = 0; c < g.tile_cols; ++c) rr.push_back(g.roughness[g.index(r, c)]);
-            roughness.push_back(rr);
-        }
-        json er = json::array(), lr = json::array(), hr = json::array();
-        for (int c = 0; c < g.tile_cols; ++c) {
-            er.push_back(int(g.exists[g.index(r, c)]));
-            lr.push_back(g.min_height[g.index(r, c)]);
-            hr.push_back(g.max_height[g.index(r, c)]);
-        }
-        exists.push_back(er);
-        lo.push_back(lr);
-        hi.push_back(hr);
-    }
-    return json{{"format", "overflight-tiles"},
-                {"version", 1},
-                {"complete", ix.complete},
-                {"source", ix.source},
-                {"checksum", ix.checksum},
-                {"tile_size", g.tile_size},
-                {"tile_rows", g.tile_rows},
-                {"tile_cols", g.tile_cols},
-                {"exists", exists},
-                {"min_height", lo},
-                {"max_height", hi},
-                {"source_rows", g.source_rows},
-                {"source_cols", g.source_cols},
-                {"padded_size", ix.padded_size},
-                {"h_scale", g.h_scale},
-                {"height_mapping", {{"v_scale", g.v_scale}, {"y_offset", g.y_offset}, {"units", "metre"}}},
-                {"georeferenced", ix.georeferenced},
-                {"geotransform", ix.geotransform},
-                {"crs", ix.crs_wkt},
-                {"apron", ix.apron},
-                {"levels", ix.levels},
-                {"roughness", roughness},
-                {"d2_min_resolution", g.d2_min_resolution},
-                {"overview", ix.overview_stride > 1 ? json{{"stride", ix.overview_stride},
-                                                            {"rows", ix.overview_rows},
-                                                            {"cols", ix.overview_cols},
-                                                            {"heights", kOverviewHeights},
-                                                            {"colors", kOverviewColors}}
-                                                      : json(nullptr)}};
-}
-
+// Checked before writing, so that no run leaves an index its readers refuse.
 void write_index(const std::string& dir, const TileIndex& ix) {
-    const std::string path = (fs::path(dir) / "index.json").string();
-    write_atomically(path, [&](const std::string& tmp) {
-        std::ofstream f(tmp);
-        f << index_to_json(ix).dump(1) << "\n";
-        if (!f) throw Error(path, "cannot write");
-    });
+    const std::string path = index_path(dir);
+    validate_tile_index(ix, path);
+    const std::string text = tile_index_text(ix);
+    write_file_atomically(path, text.data(), text.size());
 }
 
-// One GeoTIFF written atomically: `bands` planes of cols x rows samples of
-// `type` (band b at data + b * plane bytes), with a geotransform and CRS when
-// `gt` is given, and for heights the index's metre mapping as band
-// scale/offset so that GIS tools read metres.
-struct RasterSpec {
-    int cols = 0, rows = 0, bands = 1;
-    GDALDataType type = GDT_UInt16;
-    const void* data = nullptr;
-    const std::array<double, 6>* gt = nullptr;
-    std::string wkt;
-    const TileGrid* height_mapping = nullptr;
-    bool rgb = false;
-    int levels = 0; // GeoTIFF overviews holding every 2^m-th sample, m = 1 .. levels
-};
-
-// Writes every 2^m-th sample of each band into the overviews of `ds`
-// (m = 1 .. levels). GDAL's own resampling is not used: even NEAREST picks
-// samples by its own rounding of the size ratio, and a tile's reduced levels
-// must keep exactly the samples at multiples of 2^m, so that the edge
-// samples neighbouring tiles share stay identical (averaging would open
-// cracks). "NONE" only allocates the overviews.
-void write_levels(GDALDatasetH ds, const std::string& path, const RasterSpec& spec) {
-    std::vector<int> factors;
-    for (int m = 1; m <= spec.levels; ++m) factors.push_back(1 << m);
-    if (GDALBuildOverviews(ds, "NONE", int(factors.size()), factors.data(), 0, nullptr, nullptr, nullptr) != CE_None)
-        throw Error(path, "cannot create the reduced levels: " + gdal::last_error("overviews"));
-    const int bytes = GDALGetDataTypeSizeBytes(spec.type);
-    const std::size_t plane = std::size_t(spec.cols) * std::size_t(spec.rows) * std::size_t(bytes);
-    for (int b = 0; b < spec.bands; ++b) {
-        GDALRasterBandH band = GDALGetRasterBand(ds, b + 1);
-        const auto* src = static_cast<const unsigned char*>(spec.data) + std::size_t(b) * plane;
-        for (const int f : factors) {
-            const int cols = (spec.cols - 1) / f + 1, rows = (spec.rows - 1) / f + 1;
-            GDALRasterBandH ov = nullptr;
-            for (int o = 0; o < GDALGetOverviewCount(band) && !ov; ++o) {
-                GDALRasterBandH cand = GDALGetOverview(band, o);
-                if (GDALGetRasterBandXSize(cand) == cols && GDALGetRasterBandYSize(cand) == rows) ov = cand;
-            }
-            if (!ov) throw Error(path, "GDAL did not create a " + std::to_string(cols) + "x" + std::to_string(rows) + " level");
-            std::vector<unsigned char> dec(std::size_t(cols) * std::size_t(rows) * std::size_t(bytes));
-            for (int i = 0; i < rows; ++i)
-                for (int j = 0; j < cols; ++j)
-                    std::copy_n(src + (std::size_t(i) * f * std::size_t(spec.cols) + std::size_t(j) * f) * bytes, bytes,
-                                dec.data() + (std::size_t(i) * std::size_t(cols) + std::size_t(j)) * bytes);
-            if (GDALRasterIO(ov, GF_Write, 0, 0, cols, rows, dec.data(), cols, rows, spec.type, 0, 0) != CE_None)
-                throw Error(path, "cannot write a reduced level: " + gdal::last_error("I/O error"));
-        }
-    }
-}
-
-void write_raster(const std::string& path, const RasterSpec& spec) {
-    GDALDriverH gtiff = GDALGetDriverByName("GTiff");
-    char** co = nullptr;
-    co = CSLSetNameValue(co, "COMPRESS", "DEFLATE");
-    co = CSLSetNameValue(co, "PREDICTOR", spec.type == GDT_Float32 ? "3" : "2");
-    struct OptionsFree {
-        char** p;
-        ~OptionsFree() { CSLDestroy(p); }
-    } co_free{co};
-    write_atomically(path, [&](const std::string& tmp) {
-        gdal::Dataset ds(GDALCreate(gtiff, tmp.c_str(), spec.cols, spec.rows, spec.bands, spec.type, co));
-        if (!ds) throw Error(path, "cannot create: " + gdal::last_error("GTiff"));
-        if (spec.gt) {
-            double g[6];
-            std::copy(spec.gt->begin(), spec.gt->end(), g);
-            GDALSetGeoTransform(ds.get(), g);
-            if (!spec.wkt.empty()) GDALSetProjection(ds.get(), spec.wkt.c_str());
-        }
-        const std::size_t plane =
-            std::size_t(spec.cols) * std::size_t(spec.rows) * std::size_t(GDALGetDataTypeSizeBytes(spec.type));
-        for (int b = 0; b < spec.bands; ++b) {
-            GDALRasterBandH h = GDALGetRasterBand(ds.get(), b + 1);
-            if (spec.rgb)
-                GDALSetRasterColorInterpretation(h, b == 0 ? GCI_RedBand : b == 1 ? GCI_GreenBand : GCI_BlueBand);
-            if (spec.height_mapping) {
-                GDALSetRasterScale(h, spec.height_mapping->v_scale);
-                GDALSetRasterOffset(h, spec.height_mapping->y_offset);
-                GDALSetRasterUnitType(h, "metre");
-            }
-            auto* p = const_cast<unsigned char*>(static_cast<const unsigned char*>(spec.data)) + std::size_t(b) * plane;
-            if (GDALRasterIO(h, GF_Write, 0, 0, spec.cols, spec.rows, p, spec.cols, spec.rows, spec.type, 0, 0) !=
-                CE_None)
-                throw Error(path, "cannot write: " + gdal::last_error("I/O error"));
-        }
-        if (spec.levels > 0) write_levels(ds.get(), path, spec);
-        // Closing flushes the file: a failure there (disk full) must not pass.
-        CPLErrorReset();
-        GDALClose(ds.release());
-        if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
-            throw Error(path, "cannot write: " + gdal::last_error("close failed"));
-    });
-}
-
-// Colors as three planes (red, green, blue), the layout write_raster takes.
+// Colors as three planes (red, green, blue), the layout RasterSpec takes.
 std::vector<std::uint8_t> color_planes(const Terrain& t) {
     const std::size_t n = t.colors().size();
     std::vector<std::uint8_t> planes(3 * n);
@@ -216,34 +61,56 @@ std::vector<std::uint8_t> color_planes(const Terrain& t) {
     return planes;
 }
 
-// Writes the colors, then the apron, then the heights: the heights file
-// appearing under its final name marks a finished tile.
-void write_tile_files(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t,
-                      const TileApron& apron) {
-    const int n = ix.grid.tile_size;
-    const auto gt = tile_geotransform(ix, r, c);
-    const std::vector<std::uint8_t> rgb = color_planes(t.samples);
-    write_raster(tile_path(dir, r, c, TileFile::Colors),
-                 {n, n, 3, GDT_Byte, rgb.data(), &gt, ix.crs_wkt, nullptr, true, ix.levels});
-    std::vector<std::uint16_t> sides;
-    for (const auto* side : {&apron.north, &apron.south, &apron.west, &apron.east})
-        sides.insert(sides.end(), side->begin(), side->end());
-    write_raster(tile_path(dir, r, c, TileFile::Apron), {n, 4, 1, GDT_UInt16, sides.data(), nullptr, "", nullptr, false});
-    if (ix.levels > 0) {
-        // The full tile's d2 at its even samples (the centres of all nodes a
-        // level >= 1 keeps), with levels of every 2^m-th of them: level m of
-        // the tile reads level m - 1 of this file.
-        const std::vector<float> d2 = rottger_d2(t.samples, ix.grid.d2_min_resolution);
-        const int h = (n - 1) / 2 + 1;
-        std::vector<float> even(std::size_t(h) * std::size_t(h));
-        for (int i = 0; i < h; ++i)
-            for (int j = 0; j < h; ++j) even[std::size_t(i) * std::size_t(h) + std::size_t(j)] = d2[t.samples.index(2 * i, 2 * j)];
-        write_raster(tile_path(dir, r, c, TileFile::D2),
-                     {h, h, 1, GDT_Float32, even.data(), nullptr, "", nullptr, false, ix.levels - 1});
+// The files of one tile with their contents, in writing order: colors,
+// apron, d2, then heights, whose appearing under its final name marks a
+// finished tile. Not movable: the specs point into the buffers.
+class TileContent {
+public:
+    TileContent(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t, const TileApron& apron,
+                const TileMeasures& measures)
+        : gt_(tile_geotransform(ix, r, c)), rgb_(color_planes(t.samples)) {
+        const int n = ix.grid.tile_size;
+        for (const auto* side : {&apron.north, &apron.south, &apron.west, &apron.east})
+            sides_.insert(sides_.end(), side->begin(), side->end());
+        files_.emplace_back(tile_path(dir, r, c, TileFile::Colors),
+                            RasterSpec{n, n, 3, GDT_Byte, rgb_.data(), &gt_, ix.crs_wkt, nullptr, true, ix.levels});
+        files_.emplace_back(tile_path(dir, r, c, TileFile::Apron),
+                            RasterSpec{n, 4, 1, GDT_UInt16, sides_.data(), nullptr, "", nullptr, false, 0});
+        if (ix.levels > 0) {
+            // The full tile's d2 at its even samples (the centres of all nodes a
+            // level >= 1 keeps), with levels of every 2^m-th of them: level m of
+            // the tile reads level m - 1 of this file.
+            const std::vector<float> d2 = measures.d2(t.samples);
+            const int h = (n - 1) / 2 + 1;
+            even_d2_.resize(std::size_t(h) * std::size_t(h));
+            for (int i = 0; i < h; ++i)
+                for (int j = 0; j < h; ++j)
+                    even_d2_[std::size_t(i) * std::size_t(h) + std::size_t(j)] = d2[t.samples.index(2 * i, 2 * j)];
+            files_.emplace_back(tile_path(dir, r, c, TileFile::D2),
+                                RasterSpec{h, h, 1, GDT_Float32, even_d2_.data(), nullptr, "", nullptr, false, ix.levels - 1});
+        }
+        files_.emplace_back(tile_path(dir, r, c, TileFile::Heights),
+                            RasterSpec{n, n, 1, GDT_UInt16, t.samples.heights().data(), &gt_, ix.crs_wkt, &ix.grid, false,
+                                       ix.levels});
     }
-    write_raster(tile_path(dir, r, c, TileFile::Heights),
-                 {n, n, 1, GDT_UInt16, t.samples.heights().data(), &gt, ix.crs_wkt, &ix.grid, false, ix.levels});
-}
+    TileContent(const TileContent&) = delete;
+    TileContent& operator=(const TileContent&) = delete;
+
+    void write() const {
+        for (const auto& [path, spec] : files_) write_geotiff(path, spec);
+    }
+    // Whether every file already holds exactly this content.
+    bool on_disk() const {
+        return std::all_of(files_.begin(), files_.end(), [](const auto& f) { return geotiff_matches(f.first, f.second); });
+    }
+
+private:
+    std::array<double, 6> gt_;
+    std::vector<std::uint8_t> rgb_;
+    std::vector<std::uint16_t> sides_;
+    std::vector<float> even_d2_;
+    std::vector<std::pair<std::string, RasterSpec>> files_;
+};
 
 // Every f-th sample of `t` (clamped to its last row and column, with the
 // padding's darkened colors there, as cut_tile does).
@@ -262,143 +129,139 @@ Terrain decimate(const Terrain& t, int f, int rows, int cols) {
     return o;
 }
 
-std::array<double, 6> scaled_geotransform(const std::array<double, 6>& gt, int f) {
-    return {gt[0], gt[1] * f, gt[2] * f, gt[3], gt[4] * f, gt[5] * f};
-}
-
-void write_overview(const std::string& dir, const TileIndex& ix, const Terrain& t) {
-    const Terrain o = decimate(t, ix.overview_stride, ix.overview_rows, ix.overview_cols);
-    const auto gt = scaled_geotransform(ix.geotransform, ix.overview_stride);
+// overview.tif and overview_rgb.tif, unless a resumed run finds them holding
+// exactly this content.
+void write_overview(const std::string& dir, const TileIndex& ix, const Terrain& t, bool resume) {
+    const int f = ix.overview_stride;
+    const Terrain o = decimate(t, f, ix.overview_rows, ix.overview_cols);
+    const std::array<double, 6>& g = ix.geotransform;
+    const std::array<double, 6> gt{g[0], g[1] * f, g[2] * f, g[3], g[4] * f, g[5] * f};
     const std::vector<std::uint8_t> rgb = color_planes(o);
-    write_raster((fs::path(dir) / kOverviewColors).string(),
-                 {o.cols(), o.rows(), 3, GDT_Byte, rgb.data(), &gt, ix.crs_wkt, nullptr, true});
-    write_raster((fs::path(dir) / kOverviewHeights).string(),
-                 {o.cols(), o.rows(), 1, GDT_UInt16, o.heights().data(), &gt, ix.crs_wkt, &ix.grid, false});
+    const std::pair<std::string, RasterSpec> files[] = {
+        {(fs::path(dir) / kOverviewColors).string(),
+         RasterSpec{o.cols(), o.rows(), 3, GDT_Byte, rgb.data(), &gt, ix.crs_wkt, nullptr, true, 0}},
+        {(fs::path(dir) / kOverviewHeights).string(),
+         RasterSpec{o.cols(), o.rows(), 1, GDT_UInt16, o.heights().data(), &gt, ix.crs_wkt, &ix.grid, false, 0}}};
+    for (const auto& [path, spec] : files)
+        if (!(resume && geotiff_matches(path, spec))) write_geotiff(path, spec);
 }
 
-// Reads `bands` planes of cols x rows samples of `type` from `path` into
-// `out`; with reduce > 1, from the overview of the full raster written by
-// write_levels() that holds every reduce-th sample (cols x rows is its size).
-void read_raster(const std::string& path, int cols, int rows, int bands, GDALDataType type, void* out, int reduce = 1) {
-    gdal::Dataset ds = gdal::open_raster(path);
-    const int full_cols = (cols - 1) * reduce + 1, full_rows = (rows - 1) * reduce + 1;
-    if (GDALGetRasterXSize(ds.get()) != full_cols || GDALGetRasterYSize(ds.get()) != full_rows ||
-        GDALGetRasterCount(ds.get()) != bands)
-        throw Error(path, "expected " + std::to_string(bands) + " band(s) of " + std::to_string(full_cols) + "x" +
-                              std::to_string(full_rows) + " samples");
-    const std::size_t plane = std::size_t(cols) * std::size_t(rows) * std::size_t(GDALGetDataTypeSizeBytes(type));
-    for (int b = 0; b < bands; ++b) {
-        GDALRasterBandH band = GDALGetRasterBand(ds.get(), b + 1);
-        if (reduce > 1) {
-            GDALRasterBandH level = nullptr;
-            for (int o = 0; o < GDALGetOverviewCount(band) && !level; ++o) {
-                GDALRasterBandH cand = GDALGetOverview(band, o);
-                if (GDALGetRasterBandXSize(cand) == cols && GDALGetRasterBandYSize(cand) == rows) level = cand;
-            }
-            if (!level) throw Error(path, "has no level of every " + std::to_string(reduce) + "th sample; run `overflight tile` again");
-            band = level;
-        }
-        if (GDALRasterIO(band, GF_Read, 0, 0, cols, rows, static_cast<unsigned char*>(out) + std::size_t(b) * plane, cols,
-                         rows, type, 0, 0) != CE_None)
-            throw Error(path, "cannot read: " + gdal::last_error("I/O error"));
-    }
-}
-
-void read_colors(const std::string& path, Terrain& t, int reduce = 1) {
+void read_colors(GDALDatasetH ds, const std::string& path, Terrain& t, int reduce = 1) {
     const std::size_t n = t.colors().size();
     std::vector<std::uint8_t> planes(3 * n);
-    read_raster(path, t.cols(), t.rows(), 3, GDT_Byte, planes.data(), reduce);
+    read_bands(ds, path, t.cols(), t.rows(), 3, GDT_Byte, planes.data(), reduce);
     for (std::size_t i = 0; i < n; ++i) t.colors()[i] = Rgb8{planes[i], planes[n + i], planes[2 * n + i]};
 }
 
-TileIndex parse_index(const std::string& path, bool require_complete) {
-    std::ifstream f(path);
-    if (!f) throw Error(path, "missing (not a tile directory)");
-    json j;
-    try {
-        j = json::parse(f);
-    } catch (const std::exception& e) {
-        throw Error(path, std::string("malformed JSON: ") + e.what());
-    }
+std::string metres(float v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", double(v));
+    return buf;
+}
+
+// Culling trusts the index's height range before a tile is loaded, so a tile
+// must not leave it; at full resolution it spans it exactly (terrain_tile_grid
+// takes it over the tile's own samples).
+void check_heights(const std::string& path, const TileGrid& g, int r, int c, const Terrain& samples, bool full) {
+    const auto [lo_raw, hi_raw] = std::minmax_element(samples.heights().begin(), samples.heights().end());
+    const float a = tile_world_height(g, *lo_raw), b = tile_world_height(g, *hi_raw);
+    const float lo = std::min(a, b), hi = std::max(a, b);
+    const float want_lo = g.min_height[g.index(r, c)], want_hi = g.max_height[g.index(r, c)];
+    if (full ? (lo != want_lo || hi != want_hi) : (lo < want_lo || hi > want_hi))
+        throw Error(path, "heights " + metres(lo) + " .. " + metres(hi) + (full ? " differ from" : " leave") +
+                              " the range " + metres(want_lo) + " .. " + metres(want_hi) + " index.json gives the tile");
+}
+
+// Samples of a full tile beyond the source are its padding: the clamped
+// edge sample with a darkened color (cut_tile). Anything else means the
+// index's source size is not the one the tiles were cut from.
+void check_padding(const std::string& path, const TileGrid& g, int r, int c, const Terrain& samples) {
+    const int r0 = r * g.stride(), c0 = c * g.stride();
+    for (int i = 0; i < samples.rows(); ++i)
+        for (int j = 0; j < samples.cols(); ++j) {
+            const int si = std::min(r0 + i, g.source_rows - 1) - r0, sj = std::min(c0 + j, g.source_cols - 1) - c0;
+            if (si == i && sj == j) continue;
+            const Rgb8 edge = samples.color(si, sj), pad = samples.color(i, j);
+            if (samples.raw(i, j) != samples.raw(si, sj) || pad.r != edge.r / 2 || pad.g != edge.g / 2 || pad.b != edge.b / 2)
+                throw Error(path, "samples beyond the " + std::to_string(g.source_rows) + "x" + std::to_string(g.source_cols) +
+                                      " source index.json gives are not its padding");
+        }
+}
+
+void read_d2(GDALDatasetH ds, const std::string& path, int n, int reduce, std::vector<float>& d2) {
+    d2.resize(std::size_t(n) * std::size_t(n));
+    read_bands(ds, path, n, n, 1, GDT_Float32, d2.data(), reduce);
+    for (const float v : d2)
+        if (!(v >= 0) || !std::isfinite(v)) throw Error(path, "holds a d2 value that is not a finite number >= 0");
+}
+
+TileApron read_apron(GDALDatasetH ds, const std::string& path, int n) {
+    std::vector<std::uint16_t> sides(4 * std::size_t(n));
+    read_bands(ds, path, n, 4, 1, GDT_UInt16, sides.data());
+    const auto side = [&](int k) {
+        return std::vector<std::uint16_t>(sides.begin() + std::ptrdiff_t(k) * n, sides.begin() + std::ptrdiff_t(k + 1) * n);
+    };
+    return TileApron{side(0), side(1), side(2), side(3)};
+}
+
+// The index of a run over `data`: the grid, georeferencing, levels and overview.
+TileIndex plan_index(const DataSet& data, const TileWriteOptions& options) {
+    const Terrain& t = data.terrain;
     TileIndex ix;
-    try {
-        if (j.at("format").get<std::string>() != "overflight-tiles") throw Error(path, "not an overflight tile index");
-        if (j.at("version").get<int>() != 1) throw Error(path, "unsupported version");
-        ix.complete = j.at("complete").get<bool>();
-        ix.source = j.value("source", "");
-        ix.checksum = j.at("checksum").get<std::string>();
-        TileGrid& g = ix.grid;
-        g.tile_size = j.at("tile_size").get<int>();
-        g.tile_rows = j.at("tile_rows").get<int>();
-        g.tile_cols = j.at("tile_cols").get<int>();
-        g.h_scale = j.at("h_scale").get<float>();
-        g.v_scale = j.at("height_mapping").at("v_scale").get<float>();
-        g.y_offset = j.at("height_mapping").at("y_offset").get<float>();
-        g.source_rows = j.at("source_rows").get<int>();
-        g.source_cols = j.at("source_cols").get<int>();
-        ix.padded_size = j.at("padded_size").get<int>();
-        ix.georeferenced = j.at("georeferenced").get<bool>();
-        ix.geotransform = j.at("geotransform").get<std::array<double, 6>>();
-        ix.crs_wkt = j.at("crs").get<std::string>();
-        // Written by later versions of the tiler; absent means none.
-        ix.apron = j.value("apron", false);
-        ix.levels = j.value("levels", 0);
-        g.d2_min_resolution = j.value("d2_min_resolution", 0.0);
-        if (j.contains("overview") && !j.at("overview").is_null()) {
-            const auto& o = j.at("overview");
-            ix.overview_stride = o.at("stride").get<int>();
-            ix.overview_rows = o.at("rows").get<int>();
-            ix.overview_cols = o.at("cols").get<int>();
-        }
-        const auto& ex = j.at("exists");
-        const auto& lo = j.at("min_height");
-        const auto& hi = j.at("max_height");
-        if (g.tile_rows < 1 || g.tile_cols < 1 || g.tile_rows > 65536 || g.tile_cols > 65536 || int(ex.size()) != g.tile_rows ||
-            int(lo.size()) != g.tile_rows || int(hi.size()) != g.tile_rows)
-            throw Error(path, "tile grid does not match tile_rows x tile_cols");
-        for (int r = 0; r < g.tile_rows; ++r) {
-            if (int(ex[std::size_t(r)].size()) != g.tile_cols || int(lo[std::size_t(r)].size()) != g.tile_cols ||
-                int(hi[std::size_t(r)].size()) != g.tile_cols)
-                throw Error(path, "tile grid does not match tile_rows x tile_cols");
-            for (int c = 0; c < g.tile_cols; ++c) {
-                g.exists.push_back(std::uint8_t(ex[std::size_t(r)][std::size_t(c)].get<int>() != 0));
-                g.min_height.push_back(lo[std::size_t(r)][std::size_t(c)].get<float>());
-                g.max_height.push_back(hi[std::size_t(r)][std::size_t(c)].get<float>());
-            }
-        }
-        // Roughness is written with the finished index; without it (older
-        // directories, an unfinished run) tiles load at full resolution.
-        if (ix.levels > 0 && j.contains("roughness") && !j.at("roughness").is_null()) {
-            const auto& ro = j.at("roughness");
-            if (int(ro.size()) != g.tile_rows) throw Error(path, "roughness does not match tile_rows x tile_cols");
-            for (int r = 0; r < g.tile_rows; ++r) {
-                if (int(ro[std::size_t(r)].size()) != g.tile_cols)
-                    throw Error(path, "roughness does not match tile_rows x tile_cols");
-                for (int c = 0; c < g.tile_cols; ++c)
-                    g.roughness.push_back(ro[std::size_t(r)][std::size_t(c)].get<std::vector<float>>());
-            }
-            g.max_level = ix.levels;
-        }
-    } catch (const Error&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw Error(path, std::string("malformed index: ") + e.what());
+    ix.grid = terrain_tile_grid(t, options.tile_size);
+    ix.padded_size = int(ix.grid.padded_rows());
+    ix.source = data.info.source;
+    ix.checksum = terrain_checksum(t);
+    ix.georeferenced = data.info.georeferenced;
+    ix.crs_wkt = data.info.georeferenced ? data.info.crs_wkt : std::string();
+    if (data.info.georeferenced) {
+        ix.geotransform = data.info.geotransform;
+    } else {
+        // Local frame: pixel (j, i) centre at X = hs j, Y = -hs i (north up).
+        const double hs = t.h_scale();
+        ix.geotransform = {-0.5 * hs, hs, 0, 0.5 * hs, 0, -hs};
     }
-    if (ix.levels < 0 || ix.levels > 30) throw Error(path, "levels out of range");
-    if (ix.grid.d2_min_resolution != 0 && !(ix.grid.d2_min_resolution > 1))
-        throw Error(path, "d2_min_resolution must be 0 or greater than 1");
-    ix.grid.validate(path);
-    if (ix.padded_size != ix.grid.padded_rows() || ix.padded_size != ix.grid.padded_cols())
-        throw Error(path, "source and padded sizes do not match the tile grid");
-    if (ix.overview_stride != 0) {
-        const int k = ix.overview_stride;
-        if (k < 2 || k > 65536 || (k & (k - 1)) != 0 ||
-            ix.overview_rows != (ix.grid.source_rows - 2) / k + 2 || ix.overview_cols != (ix.grid.source_cols - 2) / k + 2)
-            throw Error(path, "overview stride and size do not match the source");
+    ix.apron = true;
+    ix.levels = options.measures.available() ? ix.grid.coarsest_level() : 0;
+    ix.grid.d2_min_resolution = ix.levels > 0 ? options.measures.min_resolution : 0.0;
+    const int f = overview_stride(t.rows(), t.cols(), options.overview_max_side);
+    if (f > 1) {
+        ix.overview_stride = f;
+        ix.overview_rows = (t.rows() - 2) / f + 2;
+        ix.overview_cols = (t.cols() - 2) / f + 2;
     }
-    if (require_complete && !ix.complete)
-        throw Error(path, "tiling did not finish (interrupted?); run `overflight tile` again to complete it");
     return ix;
+}
+
+// Creates `dir` and removes the temporary files a killed run left behind
+// (they cannot have cleaned up after themselves).
+void prepare_folder(const std::string& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (!fs::is_directory(dir)) throw Error(dir, "cannot create the output folder");
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.size() > 1 && name[0] == '.' && name.find(".tmp") != std::string::npos &&
+            (name.rfind(".r", 0) == 0 || name.rfind(".index.json", 0) == 0 || name.rfind(".overview", 0) == 0))
+            fs::remove(e.path(), ec);
+    }
+}
+
+// Whether `dir` holds a run of the same source, tile size and layout, whose
+// finished files may be kept (each is still checked before it is).
+bool resumable(const std::string& dir, const TileIndex& ix) {
+    std::error_code ec;
+    if (!fs::exists(index_path(dir), ec)) return false;
+    try {
+        const std::vector<std::uint8_t> bytes = read_file_bytes(index_path(dir));
+        const TileIndex old = parse_tile_index(std::string(bytes.begin(), bytes.end()), index_path(dir));
+        return old.checksum == ix.checksum && old.grid.tile_size == ix.grid.tile_size &&
+               old.geotransform == ix.geotransform && old.crs_wkt == ix.crs_wkt && old.apron &&
+               old.overview_stride == ix.overview_stride && old.levels == ix.levels &&
+               old.grid.d2_min_resolution == ix.grid.d2_min_resolution;
+    } catch (const Error&) {
+        return false;
+    }
 }
 
 } // namespace
@@ -434,84 +297,40 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
     const Terrain& t = data.terrain;
     TileWriteReport report;
     TileIndex& ix = report.index;
-    ix.grid = terrain_tile_grid(t, options.tile_size);
-    ix.padded_size = ix.grid.padded_rows();
-    ix.source = data.info.source;
-    ix.checksum = terrain_checksum(t);
-    ix.georeferenced = data.info.georeferenced;
-    ix.crs_wkt = data.info.georeferenced ? data.info.crs_wkt : std::string();
-    if (data.info.georeferenced) {
-        ix.geotransform = data.info.geotransform;
-    } else {
-        // Local frame: pixel (j, i) centre at X = hs j, Y = -hs i (north up).
-        const double hs = t.h_scale();
-        ix.geotransform = {-0.5 * hs, hs, 0, 0.5 * hs, 0, -hs};
-    }
-    ix.apron = true;
-    ix.levels = ix.grid.coarsest_level();
-    ix.grid.d2_min_resolution = ix.levels > 0 ? kD2MinResolution : 0.0;
-    const int f = overview_stride(t.rows(), t.cols(), options.overview_max_side);
-    if (f > 1) {
-        ix.overview_stride = f;
-        ix.overview_rows = (t.rows() - 2) / f + 2;
-        ix.overview_cols = (t.cols() - 2) / f + 2;
-    }
-
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (!fs::is_directory(dir)) throw Error(dir, "cannot create the output folder");
-    // Temporary files of a run that was killed cannot have cleaned up after themselves.
-    for (const auto& e : fs::directory_iterator(dir, ec)) {
-        const std::string name = e.path().filename().string();
-        if (name.size() > 1 && name[0] == '.' && name.find(".tmp") != std::string::npos &&
-            (name.rfind(".r", 0) == 0 || name.rfind(".index.json", 0) == 0 || name.rfind(".overview", 0) == 0))
-            fs::remove(e.path(), ec);
-    }
-    // Resume only a run of the same source, tile size and layout; otherwise start over.
-    bool resume = false;
-    const std::string index_path = (fs::path(dir) / "index.json").string();
-    if (fs::exists(index_path)) {
-        try {
-            const TileIndex old = parse_index(index_path, false);
-            resume = old.checksum == ix.checksum && old.grid.tile_size == ix.grid.tile_size &&
-                     old.geotransform == ix.geotransform && old.crs_wkt == ix.crs_wkt && old.apron &&
-                     old.overview_stride == ix.overview_stride && old.levels == ix.levels &&
-                     old.grid.d2_min_resolution == ix.grid.d2_min_resolution;
-        } catch (const Error&) {
-            resume = false;
-        }
-    }
+    ix = plan_index(data, options);
+    prepare_folder(dir);
+    const bool resume = resumable(dir, ix);
     ix.complete = false;
     write_index(dir, ix);
 
-    const fs::path ov_heights = fs::path(dir) / kOverviewHeights, ov_colors = fs::path(dir) / kOverviewColors;
-    if (f == 1) {
-        fs::remove(ov_heights, ec); // left over from a larger source
-        fs::remove(ov_colors, ec);
-    } else if (!(resume && fs::exists(ov_heights) && fs::exists(ov_colors))) {
-        write_overview(dir, ix, t);
+    std::error_code ec;
+    if (ix.overview_stride == 0) {
+        fs::remove(fs::path(dir) / kOverviewHeights, ec); // left over from a larger source
+        fs::remove(fs::path(dir) / kOverviewColors, ec);
+    } else {
+        write_overview(dir, ix, t, resume);
     }
 
-    std::vector<std::vector<float>> roughness(ix.grid.exists.size());
-    const int total = ix.grid.tile_rows * ix.grid.tile_cols;
+    const TileGrid& g = ix.grid;
+    std::vector<std::vector<float>> roughness(ix.levels > 0 ? g.exists.size() : 0);
+    const int total = g.tile_rows * g.tile_cols;
     const bool progress = options.terminal_progress && ::isatty(2);
     int done = 0;
-    for (int r = 0; r < ix.grid.tile_rows; ++r)
-        for (int c = 0; c < ix.grid.tile_cols; ++c) {
-            const std::string paths[] = {tile_path(dir, r, c, TileFile::Heights), tile_path(dir, r, c, TileFile::Colors),
-                                         tile_path(dir, r, c, TileFile::Apron), tile_path(dir, r, c, TileFile::D2)};
-            if (!ix.grid.present(r, c)) {
+    for (int r = 0; r < g.tile_rows; ++r)
+        for (int c = 0; c < g.tile_cols; ++c) {
+            if (!g.present(r, c)) {
                 ++report.empty;
-                for (const auto& p : paths) fs::remove(p, ec); // left over from an earlier tiling of another source
+                for (const TileFile f : {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2})
+                    fs::remove(tile_path(dir, r, c, f), ec); // left over from an earlier tiling of another source
             } else {
-                const TileSamples tile = cut_tile(t, ix.grid, r, c, false);
-                roughness[ix.grid.index(r, c)] = rottger_roughness(tile.samples);
-                if (resume && std::all_of(std::begin(paths), std::end(paths), [&](const std::string& p) {
-                        return fs::exists(p) || (ix.levels == 0 && p == paths[3]);
-                    })) {
+                const TileSamples tile = cut_tile(t, g, r, c, false);
+                if (ix.levels > 0) roughness[g.index(r, c)] = options.measures.roughness(tile.samples);
+                if (ix.levels == 0) fs::remove(tile_path(dir, r, c, TileFile::D2), ec);
+                const TileContent content(dir, ix, r, c, tile, cut_apron(t, g, r, c), options.measures);
+                if (resume && content.on_disk()) {
                     ++report.skipped;
                 } else {
-                    write_tile_files(dir, ix, r, c, tile, cut_apron(t, ix.grid, r, c));
+                    content.write();
                     ++report.written;
                 }
             }
@@ -532,33 +351,38 @@ bool is_tile_directory(const std::string& path) {
 }
 
 TileIndex read_tile_index(const std::string& dir) {
-    return parse_index((fs::path(dir) / "index.json").string(), true);
+    const std::string path = index_path(dir);
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw Error(path, "missing (not a tile directory)");
+    const std::vector<std::uint8_t> bytes = read_file_bytes(path);
+    TileIndex ix = parse_tile_index(std::string(bytes.begin(), bytes.end()), path);
+    if (!ix.complete)
+        throw Error(path, "tiling did not finish (interrupted?); run `overflight tile` again to complete it");
+    return ix;
 }
 
 TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c, bool with_normals, int level) {
-    const std::string h_path = tile_path(dir, r, c, TileFile::Heights);
+    const TileGrid& g = ix.grid;
+    const std::string h_path = tile_path(dir, r, c, TileFile::Heights), c_path = tile_path(dir, r, c, TileFile::Colors),
+                      d_path = tile_path(dir, r, c, TileFile::D2), a_path = tile_path(dir, r, c, TileFile::Apron);
     if (level < 0 || level > ix.levels)
         throw Error(h_path, "level " + std::to_string(level) + " not stored (" + std::to_string(ix.levels) + " levels)");
-    const int n = ix.grid.level_size(level), step = 1 << level;
-    TileSamples t{Terrain(n, n, ix.grid.h_scale * float(step), ix.grid.v_scale, ix.grid.y_offset), {}};
-    if (!ix.grid.present(r, c)) throw Error(h_path, "tile is flagged 0 (no data) in index.json");
-    read_raster(h_path, n, n, 1, GDT_UInt16, t.samples.heights().data(), step);
-    read_colors(tile_path(dir, r, c, TileFile::Colors), t.samples, step);
-    if (level > 0 && ix.grid.d2_min_resolution > 0) {
-        t.d2.resize(std::size_t(n) * std::size_t(n));
-        read_raster(tile_path(dir, r, c, TileFile::D2), n, n, 1, GDT_Float32, t.d2.data(), step / 2);
-    }
-    if (with_normals && ix.apron && level == 0) {
-        std::vector<std::uint16_t> sides(4 * std::size_t(n));
-        read_raster(tile_path(dir, r, c, TileFile::Apron), n, 4, 1, GDT_UInt16, sides.data());
-        TileApron a;
-        const auto side = [&](int k) { return std::vector<std::uint16_t>(sides.begin() + k * n, sides.begin() + (k + 1) * n); };
-        a.north = side(0);
-        a.south = side(1);
-        a.west = side(2);
-        a.east = side(3);
-        t.normals = tile_normals(t.samples, a, ix.grid, r, c);
-    }
+    if (!g.present(r, c)) throw Error(h_path, "tile is flagged 0 (no data) in index.json");
+    const int full = g.tile_size, n = g.level_size(level), step = 1 << level;
+    const bool with_d2 = level > 0 && g.d2_min_resolution > 0, with_apron = with_normals && ix.apron && level == 0;
+    // Every file is checked against the index before a buffer is sized from it.
+    const gdal::Dataset heights = open_checked(h_path, full, full, 1, GDT_UInt16);
+    const gdal::Dataset colors = open_checked(c_path, full, full, 3, GDT_Byte);
+    const int half = (full - 1) / 2 + 1;
+    const gdal::Dataset d2 = with_d2 ? open_checked(d_path, half, half, 1, GDT_Float32) : gdal::Dataset();
+    const gdal::Dataset apron = with_apron ? open_checked(a_path, full, 4, 1, GDT_UInt16) : gdal::Dataset();
+    TileSamples t{Terrain(n, n, g.h_scale * float(step), g.v_scale, g.y_offset), {}, {}};
+    read_bands(heights.get(), h_path, n, n, 1, GDT_UInt16, t.samples.heights().data(), step);
+    check_heights(h_path, g, r, c, t.samples, level == 0);
+    read_colors(colors.get(), c_path, t.samples, step);
+    if (level == 0) check_padding(h_path, g, r, c, t.samples);
+    if (with_d2) read_d2(d2.get(), d_path, n, step / 2, t.d2);
+    if (with_apron) t.normals = tile_normals(t.samples, read_apron(apron.get(), a_path, full), g, r, c);
     return t;
 }
 
@@ -596,6 +420,12 @@ void fill_info(TerrainInfo& info, const std::string& dir, const TileIndex& ix) {
 
 DataSet load_tile_directory(const std::string& dir) {
     const TileIndex ix = read_tile_index(dir);
+    // The whole terrain is allocated only once every tile the index claims is
+    // there in the size it claims (headers only; read_tile checks the rest).
+    for (int r = 0; r < ix.grid.tile_rows; ++r)
+        for (int c = 0; c < ix.grid.tile_cols; ++c)
+            if (ix.grid.present(r, c))
+                open_checked(tile_path(dir, r, c, TileFile::Heights), ix.grid.tile_size, ix.grid.tile_size, 1, GDT_UInt16);
     DataSet d;
     Terrain t(ix.grid.source_rows, ix.grid.source_cols, ix.grid.h_scale, ix.grid.v_scale, ix.grid.y_offset);
     const int s = ix.grid.stride();
@@ -623,10 +453,13 @@ DataSet load_tile_directory_overview(const std::string& dir, int max_side) {
     DataSet d;
     if (ix.overview_stride > 1 && f % ix.overview_stride == 0) {
         // The stored overview, decimated further when a smaller one is asked for.
+        const std::string h_path = (fs::path(dir) / kOverviewHeights).string(),
+                          c_path = (fs::path(dir) / kOverviewColors).string();
+        const gdal::Dataset heights = open_checked(h_path, ix.overview_cols, ix.overview_rows, 1, GDT_UInt16);
+        const gdal::Dataset colors = open_checked(c_path, ix.overview_cols, ix.overview_rows, 3, GDT_Byte);
         Terrain stored(ix.overview_rows, ix.overview_cols, g.h_scale * float(ix.overview_stride), g.v_scale, g.y_offset);
-        read_raster((fs::path(dir) / kOverviewHeights).string(), stored.cols(), stored.rows(), 1, GDT_UInt16,
-                    stored.heights().data());
-        read_colors((fs::path(dir) / kOverviewColors).string(), stored);
+        read_bands(heights.get(), h_path, stored.cols(), stored.rows(), 1, GDT_UInt16, stored.heights().data());
+        read_colors(colors.get(), c_path, stored);
         const int k = f / ix.overview_stride;
         if (k == 1) {
             d.terrain = std::move(stored);

@@ -1,9 +1,9 @@
 #pragma once
-// Tile directories (DESIGN sec. 4, 6; issue 6): `overflight tile` cuts a
+// Tile directories (DESIGN sec. 4, 6): `overflight tile` cuts a
 // terrain into overlapping (2^k+1)^2 tiles and writes one GeoTIFF per tile
 // plus DIR/index.json; renderers load tiles lazily through a TileLoader.
 //
-// Based on: Zamri, seed 001, "Data tiling": the terrain is padded to a
+// Based on: Zamri, "Data tiling": the terrain is padded to a
 // (2^n+1)^2 square, cut into tiles of 2^k+1 samples per side that share their
 // edge samples, tiles without source data are flagged 0 and not stored, and
 // each tile goes to its own file for fast retrieval.
@@ -46,7 +46,7 @@
 //                        at its even samples, with overviews of every
 //                        2^m-th: a tile read at level m takes level m - 1 of
 //                        it, so its quadtree has the full tile's d2.
-//   r{R}_c{C}_apron.tif  the raw samples just outside the tile (lod/TileSet.h
+//   r{R}_c{C}_apron.tif  the raw samples just outside the tile (core/TileGrid.h
 //                        TileApron): 4 rows of tile_size UInt16 (north, south,
 //                        west, east), so that the loader computes normals at
 //                        the tile's edges from both sides and seams are not lit
@@ -57,12 +57,21 @@
 //                        georeferenced; written only when f > 1. It lets a
 //                        renderer place its camera and answer height queries
 //                        without loading a terrain larger than memory.
-// Every file is written to a temporary name and renamed; the heights file is
-// renamed last, so it marks a finished tile. A re-run with the same source and
-// tile size skips finished tiles; index.json is rewritten with
-// complete = true at the end, and readers refuse an incomplete directory.
+// Every file is encoded in memory, written to a temporary name (every write
+// and the close checked: a full disk fails with "no space left on device")
+// and renamed; the heights file is renamed last, so it marks a finished tile.
+// A re-run with the same source and tile size keeps a tile only when each of
+// its files reads back exactly what it would write (a truncated or foreign
+// file is rewritten), so that it ends byte-identical to an uninterrupted
+// run; index.json is rewritten with complete = true at the very end, and
+// readers refuse an incomplete directory.
+// Readers check index.json against the format's limits and itself
+// (io/TileIndex.h) and each file's raster size, bands and type against the
+// index before allocating anything from them; a tile whose heights leave
+// the range index.json gives it is refused.
 #include "core/DataSet.h"
-#include "lod/TileSet.h"
+#include "core/TileGrid.h"
+#include "io/TileIndex.h"
 
 #include <array>
 #include <cstdint>
@@ -71,21 +80,6 @@
 
 namespace overflight {
 
-struct TileIndex {
-    TileGrid grid; // includes the source size
-    int padded_size = 0;
-    std::string crs_wkt;
-    bool georeferenced = false;
-    std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
-    std::string checksum;
-    bool complete = false;
-    bool apron = false;       // r{R}_c{C}_apron.tif files exist (older directories: no)
-    int levels = 0;           // reduced levels in each tile file (older directories: 0)
-    int overview_stride = 0;  // 0: no overview files
-    int overview_rows = 0, overview_cols = 0;
-    std::string source; // what was tiled (path or "demo")
-};
-
 struct TileWriteOptions {
     int tile_size = 257;
     bool terminal_progress = false; // GDALTermProgress on stderr
@@ -93,6 +87,11 @@ struct TileWriteOptions {
     // Called after each tile with (tiles done, tiles total); returning false
     // stops the run as an interruption would (throws Error(dir, "interrupted")).
     std::function<bool(int, int)> on_tile;
+    // Röttger's roughness and d2 of each tile (lod/TileSet.h
+    // rottger_tile_measures(), handed over by the caller: io does not
+    // depend on lod). Without them the directory has no reduced levels
+    // (levels 0): tiles are read at full resolution only.
+    TileMeasures measures;
 };
 
 struct TileWriteReport {
@@ -126,10 +125,12 @@ TileIndex read_tile_index(const std::string& dir);
 // heights in raw units with the index's mapping, colors, above level 0 the
 // full tile's d2 at each sample (when the directory has _d2 files), and at level 0
 // with the apron files (index.apron) normals equal to the whole terrain's
-// (lod/TileSet.h tile_normals); otherwise normals are left empty (TileSet
+// (core/TileGrid.h tile_normals); otherwise normals are left empty (TileSet
 // computes one-sided ones: a reduced tile is far away, where the lighting
 // seam is a fraction of a pixel). with_normals = false skips the apron.
-// Throws Error(tile path, ...) when missing or of the wrong size.
+// Throws Error(tile path, ...) when a file is missing, unreadable, of another
+// size, band count or type than the index says, or its heights or d2 values
+// are out of range (heights at level 0 must span exactly the index's range).
 TileSamples read_tile(const std::string& dir, const TileIndex& index, int r, int c, bool with_normals = true,
                       int level = 0);
 

@@ -23,141 +23,6 @@ double ms_since(Clock::time_point t0) {
 }
 } // namespace
 
-void TileGrid::validate(const std::string& subject) const {
-    if (!is_pow2_plus1(tile_size) || tile_size < 3)
-        throw Error(subject, "tile size " + std::to_string(tile_size) + " is not 2^k+1 with k >= 1");
-    if (tile_rows < 1 || tile_cols < 1 || tile_rows > 65536 || tile_cols > 65536)
-        throw Error(subject, "tile grid " + std::to_string(tile_rows) + "x" + std::to_string(tile_cols) + " is empty or too large");
-    if (source_rows < 2 || source_cols < 2 || source_rows > padded_rows() || source_cols > padded_cols())
-        throw Error(subject, "source of " + std::to_string(source_rows) + "x" + std::to_string(source_cols) +
-                                 " samples does not fit the tile grid");
-    const std::size_t n = std::size_t(tile_rows) * std::size_t(tile_cols);
-    if (exists.size() != n || min_height.size() != n || max_height.size() != n)
-        throw Error(subject, "tile grid needs one existence flag and one height range per tile");
-    if (!(h_scale > 0) || !std::isfinite(h_scale) || !std::isfinite(v_scale) || !std::isfinite(y_offset))
-        throw Error(subject, "tile grid scales must be finite, the horizontal one positive");
-    if (max_level < 0 || max_level > coarsest_level() || (max_level > 0 && roughness.size() != n))
-        throw Error(subject, "tile levels need 0 .. " + std::to_string(coarsest_level()) + " levels and one roughness per tile");
-    for (std::size_t i = 0; i < roughness.size(); ++i)
-        if (exists[i] && roughness[i].size() != std::size_t(coarsest_level() + 1))
-            throw Error(subject, "tile roughness needs one value per node size");
-}
-
-int TileGrid::coarsest_level() const {
-    int k = 0;
-    while ((1 << (k + 1)) <= stride()) ++k;
-    return k - 1;
-}
-
-TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
-    if (!is_pow2_plus1(tile_size) || tile_size < 3)
-        throw Error("tile size", std::to_string(tile_size) + " is not 2^k+1 (3, 5, 9, ..., 257, 513, ...)");
-    const int padded = next_pow2_plus1(std::max(terrain.rows(), terrain.cols()));
-    TileGrid g;
-    g.tile_size = std::min(tile_size, padded);
-    g.tile_rows = g.tile_cols = (padded - 1) / g.stride();
-    g.source_rows = terrain.rows();
-    g.source_cols = terrain.cols();
-    g.h_scale = terrain.h_scale();
-    g.v_scale = terrain.v_scale();
-    g.y_offset = terrain.y_offset();
-    const std::size_t n = std::size_t(g.tile_rows) * std::size_t(g.tile_cols);
-    g.exists.assign(n, 0);
-    g.min_height.assign(n, 0.0f);
-    g.max_height.assign(n, 0.0f);
-    const int s = g.stride();
-    for (int r = 0; r < g.tile_rows; ++r)
-        for (int c = 0; c < g.tile_cols; ++c) {
-            // Zamri: a tile exists when it holds source data; the padding
-            // alone is not worth storing or drawing.
-            const int r0 = r * s, c0 = c * s;
-            if (r0 >= terrain.rows() || c0 >= terrain.cols()) continue;
-            std::uint16_t lo = std::numeric_limits<std::uint16_t>::max(), hi = 0;
-            // Padded samples repeat edge samples, so the clamped source window bounds them.
-            const int r1 = std::min(r0 + s, terrain.rows() - 1), c1 = std::min(c0 + s, terrain.cols() - 1);
-            for (int i = r0; i <= r1; ++i)
-                for (int j = c0; j <= c1; ++j) {
-                    const std::uint16_t v = terrain.raw(i, j);
-                    lo = std::min(lo, v);
-                    hi = std::max(hi, v);
-                }
-            g.exists[g.index(r, c)] = 1;
-            g.min_height[g.index(r, c)] = g.v_scale * float(lo) + g.y_offset;
-            g.max_height[g.index(r, c)] = g.v_scale * float(hi) + g.y_offset;
-        }
-    return g;
-}
-
-TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col, bool with_normals,
-                     int level) {
-    const int n = grid.level_size(level), s = grid.stride(), step = 1 << level;
-    TileSamples t{Terrain(n, n, grid.h_scale * float(step), grid.v_scale, grid.y_offset), {}};
-    if (with_normals) t.normals.resize(std::size_t(n) * std::size_t(n));
-    for (int i = 0; i < n; ++i) {
-        const int gi = tile_row * s + i * step, si = std::min(gi, terrain.rows() - 1);
-        for (int j = 0; j < n; ++j) {
-            const int gj = tile_col * s + j * step, sj = std::min(gj, terrain.cols() - 1);
-            t.samples.raw(i, j) = terrain.raw(si, sj);
-            Rgb8 col = terrain.color(si, sj);
-            // Same darkening as pad_to_pow2_plus1: padding reads as "no data".
-            if (si != gi || sj != gj) col = Rgb8{std::uint8_t(col.r / 2), std::uint8_t(col.g / 2), std::uint8_t(col.b / 2)};
-            t.samples.color(i, j) = col;
-            if (with_normals) t.normals[t.samples.index(i, j)] = terrain.sample_normal(si, sj);
-        }
-    }
-    return t;
-}
-
-TileApron cut_apron(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col) {
-    const int n = grid.tile_size, S = grid.stride();
-    const int r0 = tile_row * S, c0 = tile_col * S;
-    auto raw = [&](int gi, int gj) {
-        return terrain.raw(std::clamp(gi, 0, terrain.rows() - 1), std::clamp(gj, 0, terrain.cols() - 1));
-    };
-    TileApron a;
-    for (int k = 0; k < n; ++k) {
-        a.north.push_back(raw(r0 - 1, c0 + k));
-        a.south.push_back(raw(r0 + n, c0 + k));
-        a.west.push_back(raw(r0 + k, c0 - 1));
-        a.east.push_back(raw(r0 + k, c0 + n));
-    }
-    return a;
-}
-
-std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron, const TileGrid& grid, int tile_row,
-                                    int tile_col) {
-    const int n = grid.tile_size, S = grid.stride();
-    const auto un = std::size_t(n);
-    if (tile.rows() != n || tile.cols() != n || apron.north.size() != un || apron.south.size() != un ||
-        apron.west.size() != un || apron.east.size() != un)
-        throw Error("tile", "samples or apron do not match the tile size " + std::to_string(n));
-    const int r0 = tile_row * S, c0 = tile_col * S;
-    // Height at local (i, j) in -1..n, at most one of them outside the tile.
-    auto height = [&](int i, int j) {
-        std::uint16_t raw;
-        if (i < 0) raw = apron.north[std::size_t(j)];
-        else if (i >= n) raw = apron.south[std::size_t(j)];
-        else if (j < 0) raw = apron.west[std::size_t(i)];
-        else if (j >= n) raw = apron.east[std::size_t(i)];
-        else raw = tile.raw(i, j);
-        return tile.v_scale() * float(raw) + tile.y_offset(); // as Terrain::sample_height
-    };
-    std::vector<glm::vec3> normals(un * un);
-    const float hs = tile.h_scale();
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            // The same clamping and float arithmetic as Terrain::sample_normal
-            // on the source, in global sample indices.
-            const int row = std::min(r0 + i, grid.source_rows - 1), col = std::min(c0 + j, grid.source_cols - 1);
-            const int cl = std::max(col - 1, 0), cr = std::min(col + 1, grid.source_cols - 1);
-            const int rt = std::max(row - 1, 0), rb = std::min(row + 1, grid.source_rows - 1);
-            const float dhdx = (height(row - r0, cr - c0) - height(row - r0, cl - c0)) / (hs * float(cr - cl));
-            const float dhdz = (height(rb - r0, col - c0) - height(rt - r0, col - c0)) / (hs * float(rb - rt));
-            normals[std::size_t(i) * un + std::size_t(j)] = glm::normalize(glm::vec3(-dhdx, 1.0f, -dhdz));
-        }
-    return normals;
-}
-
 TileLoader terrain_tile_loader(const Terrain& terrain, const TileGrid& grid) {
     return [&terrain, grid_copy = grid](int r, int c, int level) {
         return cut_tile(terrain, grid_copy, r, c, true, level);
@@ -171,6 +36,14 @@ void add_tile_levels(const Terrain& terrain, TileGrid& grid) {
             if (grid.present(r, c))
                 grid.roughness[grid.index(r, c)] = rottger_roughness(cut_tile(terrain, grid, r, c, false).samples);
     grid.max_level = grid.coarsest_level();
+}
+
+TileMeasures rottger_tile_measures(double min_resolution) {
+    TileMeasures m;
+    m.roughness = [](const Terrain& tile) { return rottger_roughness(tile); };
+    m.d2 = [min_resolution](const Terrain& tile) { return rottger_d2(tile, min_resolution); };
+    m.min_resolution = min_resolution;
+    return m;
 }
 
 struct TileSet::Tile {
@@ -299,15 +172,13 @@ void TileSet::evict(TileFrameStats& stats) {
     }
 }
 
-TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshArrays& out) {
-    camera.validate();
-    out.clear();
-    ++frame_;
-    TileFrameStats stats;
-    stats.per_level.assign(std::size_t(grid_.coarsest_level() + 1), 0);
-    const double c_rottger = rottger_c(error_px, camera.focal_px(), C_);
-    auto t0 = Clock::now();
+std::ptrdiff_t TileSet::cell(int r, int c) const {
+    const int wr = r - win_r0_, wc = c - win_c0_;
+    if (wr < 0 || wc < 0 || wr >= win_w_ || wc >= win_w_) return -1;
+    return std::ptrdiff_t(wr) * win_w_ + wc;
+}
 
+void TileSet::select(const Camera& camera, double c_rottger, const Frustum& frustum, TileFrameStats& stats) {
     // The viewer's tile, then rings until `far` is covered: a tile in ring r
     // is at least (r - 1) tile widths away horizontally, so rings beyond
     // far / width + 1 cannot hold anything in front of the far plane.
@@ -322,12 +193,6 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
     const std::size_t cells = std::size_t(win_w_) * std::size_t(win_w_);
     window_.assign(cells, nullptr);
     window_level_.assign(cells, -1);
-    auto cell = [&](int r, int c2) -> std::ptrdiff_t {
-        const int wr = r - win_r0_, wc = c2 - win_c0_;
-        if (wr < 0 || wc < 0 || wr >= win_w_ || wc >= win_w_) return -1;
-        return std::ptrdiff_t(wr) * win_w_ + wc;
-    };
-    const Frustum frustum = Frustum::from_camera(camera);
     visible_keys_.clear();
     picks_.clear();
     for (int r = std::max(tr0 - R, 0); r <= std::min(tr0 + R, grid_.tile_rows - 1); ++r)
@@ -378,9 +243,10 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
         window_level_[std::size_t(cell(p.row, p.col))] = p.level;
         ++stats.per_level[std::size_t(p.level)];
     }
-    stats.visible = int(picks_.size());
-    stats.ms_select = ms_since(t0);
+}
 
+void TileSet::draw(const Camera& camera, double c_rottger, const Frustum& frustum, TileFrameStats& stats,
+                   MeshArrays& out) {
     // Row by row: a row's fans ask its neighbours about the seams, so the
     // rows above and below must be loaded and refined; once a row is drawn,
     // the row above it is done and may be evicted if the bound requires it.
@@ -428,6 +294,21 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
         }
         stats.ms_fans += ms_since(t1);
     }
+}
+
+TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshArrays& out) {
+    camera.validate();
+    out.clear();
+    ++frame_;
+    TileFrameStats stats;
+    stats.per_level.assign(std::size_t(grid_.coarsest_level() + 1), 0);
+    const double c_rottger = rottger_c(error_px, camera.focal_px(), C_);
+    const Frustum frustum = Frustum::from_camera(camera);
+    const auto t0 = Clock::now();
+    select(camera, c_rottger, frustum, stats);
+    stats.visible = int(picks_.size());
+    stats.ms_select = ms_since(t0);
+    draw(camera, c_rottger, frustum, stats, out);
     evict(stats);
 
     stats.cached = int(cache_.size());

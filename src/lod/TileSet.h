@@ -30,6 +30,8 @@
 #include "core/Camera.h"
 #include "core/MeshArrays.h"
 #include "core/Terrain.h"
+#include "core/TileGrid.h"
+#include "lod/Frustum.h"
 #include "lod/RottgerQuadtree.h"
 
 #include <glm/vec3.hpp>
@@ -43,92 +45,16 @@
 
 namespace overflight {
 
-// The tiling of a terrain (what a tile directory's index.json describes).
-// Tile (r, c) covers global samples rows r*(s-1) .. r*(s-1)+s-1 and columns
-// c*(s-1) .. c*(s-1)+s-1, s = tile_size: neighbours share their edge samples.
-struct TileGrid {
-    int tile_size = 257;            // samples per side, 2^k+1
-    int tile_rows = 0, tile_cols = 0;
-    int source_rows = 0, source_cols = 0; // the terrain before padding
-    float h_scale = 1.0f, v_scale = 1.0f, y_offset = 0.0f;
-    std::vector<std::uint8_t> exists; // Zamri's flags, row-major tile_rows x tile_cols
-    std::vector<float> min_height;    // world Y range per tile, for the bounding
-    std::vector<float> max_height;    // spheres of tiles not loaded yet
-    // Levels the loader can deliver (0: full resolution only), and per tile
-    // rottger_roughness() of its full samples (empty when levels are unknown).
-    int max_level = 0;
-    std::vector<std::vector<float>> roughness;
-    // Röttger's C for which the loader gives reduced tiles the full tile's
-    // d2 (TileSamples::d2); 0: it does not, a bound from the roughness is used.
-    double d2_min_resolution = 0.0;
-
-    int stride() const { return tile_size - 1; }
-    std::size_t index(int r, int c) const { return std::size_t(r) * std::size_t(tile_cols) + std::size_t(c); }
-    bool present(int r, int c) const {
-        return r >= 0 && c >= 0 && r < tile_rows && c < tile_cols && exists[index(r, c)] != 0;
-    }
-    double tile_world_size() const { return double(h_scale) * stride(); }
-    int padded_rows() const { return tile_rows * stride() + 1; }
-    int padded_cols() const { return tile_cols * stride() + 1; }
-    // Samples per side of a tile at `level` (every 2^level-th sample).
-    int level_size(int level) const { return (stride() >> level) + 1; }
-    // The coarsest level a tile can drop to (a 3x3 patch).
-    int coarsest_level() const;
-    // Throws Error(subject, ...) when sizes or vectors are inconsistent.
-    void validate(const std::string& subject) const;
-};
-
-// What a loader returns for one tile at a level: level_size(level)^2 samples
-// (every 2^level-th sample of the tile: heights, colors, the grid's vertical
-// scales, h_scale times 2^level) and optionally one normal per sample
-// (empty: computed from the tile's own samples, one-sided on its border,
-// which shows a lighting seam where tiles meet), and for a reduced level
-// optionally the full tile's rottger_d2() at each sample (empty: bounded).
-struct TileSamples {
-    Terrain samples;
-    std::vector<glm::vec3> normals;
-    std::vector<float> d2;
-};
-using TileLoader = std::function<TileSamples(int tile_row, int tile_col, int level)>;
-
-// The raw samples just outside tile (r, c), s = tile_size, S = s - 1:
-// `north` is global row r*S - 1 and `south` row r*S + s, both over the
-// tile's columns c*S .. c*S + S; `west` and `east` are columns c*S - 1 and
-// c*S + s over the tile's rows. A central difference at a tile edge needs
-// them because overlapping tiles share their edge samples, so the sample
-// beyond an edge lives only in the neighbour. Positions outside the source
-// hold the clamped source sample (they are never used for normals).
-struct TileApron {
-    std::vector<std::uint16_t> north, south, west, east; // tile_size values each
-};
-TileApron cut_apron(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col);
-
-// One unit normal per sample of tile (r, c), equal to Terrain::sample_normal
-// of the whole source terrain at that sample (at the clamped source sample in
-// the padding): central differences, one-sided only at the source's own
-// border, using `apron` across the tile's edges, so both tiles of a seam
-// compute identical normals there. Throws Error("tile", ...) when the tile or
-// apron sizes do not match the grid.
-std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron, const TileGrid& grid, int tile_row,
-                                    int tile_col);
-
-// Tiling of a terrain held in memory, following Zamri's rule: the terrain is
-// (virtually) padded to a (2^n+1)^2 square, n from its larger side, and cut
-// into tiles of tile_size (clamped to that square); tiles wholly outside the
-// source are flagged 0. Padding repeats the edge samples with darkened colors
-// (as pad_to_pow2_plus1 does) without copying the terrain. Throws
-// Error("tile size", ...) when tile_size is not 2^k+1 >= 3.
-TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size);
 // Loader that cuts tiles out of `terrain` (which must outlive it); normals
 // come from Terrain::sample_normal of the whole terrain, so they agree at seams.
 TileLoader terrain_tile_loader(const Terrain& terrain, const TileGrid& grid);
-// The padded samples of one tile at `level` (what the loader above returns),
-// exposed for the tiler.
-TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col, bool with_normals,
-                     int level = 0);
 // Fills grid.roughness from the tiles of `terrain` and sets max_level, so
 // that a TileSet over terrain_tile_loader() loads far tiles reduced.
 void add_tile_levels(const Terrain& terrain, TileGrid& grid);
+// Röttger's measures of a tile (rottger_roughness, rottger_d2 for C =
+// min_resolution, TileSet's default), for a tiler that stores them so that
+// a TileSet over its directory loads far tiles reduced.
+TileMeasures rottger_tile_measures(double min_resolution = 4.0);
 
 struct TileFrameStats {
     int candidates = 0;   // present tiles in the rings around the viewer
@@ -185,6 +111,12 @@ private:
     Tile& acquire(const Pick& p, int done_row, TileFrameStats& stats);
     void make_room(std::size_t bytes, int done_row, TileFrameStats& stats);
     void evict(TileFrameStats& stats);
+    // Index of tile (r, c) in the window around the viewer, -1 outside it.
+    std::ptrdiff_t cell(int r, int c) const;
+    // The visible tiles around the camera with their levels (picks_, window_level_).
+    void select(const Camera& camera, double c_rottger, const Frustum& frustum, TileFrameStats& stats);
+    // Loads, refines and appends the fans of the picked tiles row by row.
+    void draw(const Camera& camera, double c_rottger, const Frustum& frustum, TileFrameStats& stats, MeshArrays& out);
 
     TileGrid grid_;
     TileLoader loader_;

@@ -38,6 +38,14 @@ DataSet small_island() {
     return make_demo_island(o);
 }
 
+// What `overflight tile` passes: Röttger's measures for the reduced levels.
+TileWriteOptions tile_options(int tile_size) {
+    TileWriteOptions o;
+    o.tile_size = tile_size;
+    o.measures = rottger_tile_measures();
+    return o;
+}
+
 std::string bytes_of(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(f), {});
@@ -48,8 +56,7 @@ std::string bytes_of(const fs::path& p) {
 TEST(Tile, TilesReassembleToPaddedSource) {
     test::ScratchDir dir;
     const DataSet d = small_island();
-    TileWriteOptions o;
-    o.tile_size = 33;
+    TileWriteOptions o = tile_options(33);
     const TileWriteReport r = write_tile_directory(d, dir.path.string(), o);
     EXPECT_EQ(r.index.grid.tile_rows, 4);
     EXPECT_EQ(r.written, 16);
@@ -93,8 +100,7 @@ TEST(Tile, ExistenceFlagsOnEmptyTiles) {
     d.terrain = Terrain(70, 100, 5.0f, 0.5f, -10.0f);
     for (int i = 0; i < 70; ++i)
         for (int j = 0; j < 100; ++j) d.terrain.raw(i, j) = std::uint16_t(i * 100 + j);
-    TileWriteOptions o;
-    o.tile_size = 33;
+    TileWriteOptions o = tile_options(33);
     const TileWriteReport r = write_tile_directory(d, dir.path.string(), o);
     EXPECT_EQ(r.written, 12);
     EXPECT_EQ(r.empty, 4);
@@ -121,8 +127,7 @@ TEST(Tile, InterruptedRunResumesToTheSameResult) {
         fs::path path;
     } ref_dir{scratch.path / "ref"}, dir{scratch.path / "resumed"};
     const DataSet d = small_island();
-    TileWriteOptions o;
-    o.tile_size = 33;
+    TileWriteOptions o = tile_options(33);
     write_tile_directory(d, ref_dir.path.string(), o);
 
     TileWriteOptions stop = o;
@@ -197,11 +202,16 @@ TEST(Tile, RealDemKeepsGeoreferencing) {
     EXPECT_NEAR(tgt[3], gt[3] + 128 * gt[5], 1e-6);
 }
 
-// The tiler killed with SIGKILL in mid-run (not the cooperative stop above):
-// no file under a final name is partial (each is byte-identical to the same
-// file of an uninterrupted run), the directory is refused until finished, and
-// a re-run skips the finished tiles and ends identical to the uninterrupted run.
-TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
+namespace {
+
+// The tiler stopped by signal `sig` in mid-run (not the cooperative stop
+// above): no file under a final name is partial (each is byte-identical to
+// the same file of an uninterrupted run), the directory is refused until
+// finished, and a re-run skips the finished tiles and ends identical to the
+// uninterrupted run. SIGINT and SIGTERM let the tiler finish its tile and
+// exit with one line (no temporary file left); SIGKILL leaves temporaries
+// that the re-run removes.
+void stop_and_resume(int sig) {
     test::ScratchDir scratch;
     const std::string ref = scratch / "ref", dir = scratch / "killed";
     const std::string args = "tile demo --demo-size 257 --tile-size 9 -o "; // 32x32 tiles
@@ -227,7 +237,8 @@ TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
     posix_spawn_file_actions_t quiet;
     posix_spawn_file_actions_init(&quiet);
     posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
+    const std::string err_path = scratch / "stderr";
+    posix_spawn_file_actions_addopen(&quiet, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid = 0;
     ASSERT_EQ(posix_spawn(&pid, OVERFLIGHT_EXE, &quiet, nullptr, argv.data(), environ), 0);
     posix_spawn_file_actions_destroy(&quiet);
@@ -242,11 +253,17 @@ TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
         }
         std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
-    if (!exited) {
-        kill(pid, SIGKILL);
-        waitpid(pid, &status, 0);
+    ASSERT_FALSE(exited) << "the tiler ended before it could be stopped";
+    kill(pid, sig);
+    waitpid(pid, &status, 0);
+    if (sig == SIGKILL) {
+        ASSERT_TRUE(WIFSIGNALED(status));
+    } else {
+        ASSERT_TRUE(WIFEXITED(status));
+        EXPECT_EQ(WEXITSTATUS(status), 1);
+        EXPECT_EQ(bytes_of(err_path), "overflight: " + dir + ": interrupted\n");
+        for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
     }
-    ASSERT_TRUE(WIFSIGNALED(status)) << "the tiler ended before it could be killed";
 
     const int finished = finished_tiles();
     EXPECT_GE(finished, 40);
@@ -270,13 +287,18 @@ TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) {
     EXPECT_EQ(read_tile_index(dir).checksum, read_tile_index(ref).checksum);
 }
 
+} // namespace
+
+TEST(Tile, KilledTilerLeavesNoBrokenTileAndResumes) { stop_and_resume(SIGKILL); }
+
+TEST(Tile, InterruptedTilerStopsCleanlyAndResumes) { stop_and_resume(SIGINT); }
+
 // Normals read from a tile directory equal the whole terrain's at every
 // sample, so the two tiles of a seam light it identically (the apron files).
 TEST(Tile, TileEdgeNormalsMatchTheWholeTerrain) {
     test::ScratchDir dir;
     const DataSet d = small_island();
-    TileWriteOptions o;
-    o.tile_size = 33;
+    TileWriteOptions o = tile_options(33);
     write_tile_directory(d, dir.path.string(), o);
     const TileIndex ix = read_tile_index(dir.path.string());
     EXPECT_TRUE(ix.apron);
@@ -315,8 +337,7 @@ TEST(Tile, OverviewStandsInForTheTerrain) {
     EXPECT_EQ(overview_stride(70, 100, 100), 1);
     EXPECT_EQ(overview_stride(16385, 16385, 2049), 8);
     EXPECT_THROW(overview_stride(70, 100, 1), Error);
-    TileWriteOptions o;
-    o.tile_size = 33;
+    TileWriteOptions o = tile_options(33);
     o.overview_max_side = 30;
     write_tile_directory(d, dir.path.string(), o);
     const TileIndex ix = read_tile_index(dir.path.string());
@@ -358,7 +379,7 @@ TEST(Tile, OverviewStandsInForTheTerrain) {
     EXPECT_EQ(full.terrain.heights(), d.terrain.heights());
     // A terrain that fits needs no overview files.
     test::ScratchDir small;
-    write_tile_directory(d, small.path.string(), TileWriteOptions{33});
+    write_tile_directory(d, small.path.string(), tile_options(33));
     EXPECT_FALSE(fs::exists(small.path / "overview.tif"));
     EXPECT_EQ(read_tile_index(small.path.string()).overview_stride, 0);
 }
@@ -380,8 +401,7 @@ TEST(Tile, FloatDemTilesReadAsMetresOnTheSourceGrid) {
     ASSERT_FALSE(d.info.reprojected);
     ASSERT_EQ(d.terrain.rows(), 111);
     test::ScratchDir dir;
-    TileWriteOptions o;
-    o.tile_size = 33;
+    TileWriteOptions o = tile_options(33);
     write_tile_directory(d, dir.path.string(), o);
     const TileIndex ix = read_tile_index(dir.path.string());
     EXPECT_TRUE(ix.georeferenced);
@@ -422,8 +442,7 @@ TEST(Tile, SrtmTilesCarryTheReprojectedGrid) {
     ASSERT_TRUE(d.info.reprojected);
     ASSERT_TRUE(d.info.georeferenced);
     test::ScratchDir dir;
-    TileWriteOptions o;
-    o.tile_size = 513;
+    TileWriteOptions o = tile_options(513);
     write_tile_directory(d, dir.path.string(), o);
     const TileIndex ix = read_tile_index(dir.path.string());
     EXPECT_EQ(ix.geotransform, d.info.geotransform);
@@ -462,8 +481,7 @@ TEST(Tile, SrtmTilesCarryTheReprojectedGrid) {
 TEST(Tile, ReducedLevelsKeepExactSamples) {
     test::ScratchDir dir;
     const DataSet d = small_island();
-    TileWriteOptions o;
-    o.tile_size = 33;
+    TileWriteOptions o = tile_options(33);
     write_tile_directory(d, dir.path.string(), o);
     const TileIndex ix = read_tile_index(dir.path.string());
     ASSERT_EQ(ix.levels, 4); // 17, 9, 5, 3 samples
