@@ -1,9 +1,12 @@
 // overflight: one program, one subcommand per job (DESIGN sec. 6).
 #include "Commands.h"
+#include "Loading.h"
 #include "core/Error.h"
 
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <string>
 
 int main(int argc, char** argv) {
     CLI::App app{"Overflight: fly over large height-field terrains with objects on them"};
@@ -21,6 +24,18 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const overflight::Error& e) {
         std::fprintf(stderr, "overflight: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        // The last resort: loaders report their own sizes, but a process
+        // limit can still stop an allocation they could not foresee.
+        const std::string& what = overflight::app::being_loaded();
+        if (!what.empty()) {
+            std::fprintf(stderr, "overflight: %s: not enough memory to load it\n", what.c_str());
+        } else {
+            const auto commands = app.get_subcommands();
+            std::fprintf(stderr, "overflight: %s: not enough memory\n",
+                         commands.empty() ? "overflight" : commands.front()->get_name().c_str());
+        }
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "overflight: %s\n", e.what());
