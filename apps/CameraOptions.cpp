@@ -145,8 +145,11 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
         throw Error("--eye", "eye " + num(cam.eye.x) + "," + num(cam.eye.y) + "," + num(cam.eye.z) +
                                  " is too far from the terrain (X 0.." + num(t.width()) + ", Z 0.." + num(t.depth()) + ")");
     // An eye under the ground sees the inside of the terrain: one solid color.
+    // The ground is the higher of the two surface models (DESIGN sec. 1:
+    // blocks, the nearest sample; bilinear), as renderers use either.
     if (t.contains(float(cam.eye.x), float(cam.eye.z))) {
-        const double ground = t.height_bilinear(float(cam.eye.x), float(cam.eye.z));
+        const double ground = std::max(t.height_bilinear(float(cam.eye.x), float(cam.eye.z)),
+                                       t.height_nearest(float(cam.eye.x), float(cam.eye.z)));
         if (cam.eye.y < ground)
             throw Error(a.eye.empty() ? "--agl" : "--eye",
                         "eye " + num(cam.eye.x) + "," + num(cam.eye.y) + "," + num(cam.eye.z) + " is " +

@@ -16,13 +16,15 @@ namespace {
 using test::run_overflight;
 using test::ScratchDir;
 
-// A data set of 3x3 samples, all `sample` high, under the given map text.
-std::string data_set(const ScratchDir& dir, const std::string& map, std::uint16_t sample = 100) {
+// A data set of 3x3 samples, all `sample` high but the centre one, under the given map text.
+std::string data_set(const ScratchDir& dir, const std::string& map, std::uint16_t sample = 100,
+                     std::uint16_t centre = 100) {
     const std::string set = dir / "set";
     std::filesystem::create_directories(set);
     std::ofstream(set + "/map", std::ios::binary) << map;
     Image2D<std::uint16_t> hf(3, 3);
     for (auto& h : hf.pixels) h = sample;
+    hf.at(1, 1) = centre;
     write_pgm(set + "/hf.pgm", hf, 65535);
     return set;
 }
@@ -56,11 +58,11 @@ TEST(UntrustedDataSet, VerticalScaleBeyondFloatRange) {
 
 TEST(UntrustedDataSet, ElevationsBeyondFloatWorld) {
     ScratchDir dir;
-    const std::string set = data_set(dir, "h_scale = 1\nv_scale = 1000\n", 60000);
+    const std::string set = data_set(dir, "h_scale = 1\nv_scale = 1000\n", 60000, 60000);
     expect_error("info '" + set + "'",
                  "overflight: " + set + "/map: v_scale = 1000, y_offset = 0: for sample 60000 of hf.pgm, elevation "
                  "60000000 is beyond +-16777216 (2^24), where float world coordinates no longer hold whole units\n");
-    expect_success("info '" + data_set(dir, "h_scale = 1\nv_scale = 100\n", 60000) + "'");
+    expect_success("info '" + data_set(dir, "h_scale = 1\nv_scale = 100\n", 60000, 60000) + "'");
 }
 
 TEST(UntrustedDataSet, VehicleStartOutsideTheTerrainBlamesTheMap) {
@@ -81,6 +83,18 @@ TEST(UntrustedCamera, EyeUnderTheSurfaceIsRefused) {
     EXPECT_FALSE(std::filesystem::exists(out));
     expect_success("render '" + set + "' -o '" + out + "' --size 16x16 --eye 10,103,10");
     EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+TEST(UntrustedCamera, EyeInsideTheNearestSampleBlockIsRefused) {
+    // At (8, 8) the bilinear ground is 100 + 20 * 0.8 * 0.8 = 112.8 but the
+    // nearest sample, the block the voxel renderer draws there, is 120 high.
+    ScratchDir dir;
+    const std::string set = data_set(dir, "h_scale = 10\nv_scale = 1\n", 100, 120);
+    const std::string out = dir / "out.png";
+    expect_error("render '" + set + "' -o '" + out + "' --size 16x16 --at 8,8 --agl 2",
+                 "overflight: --agl: eye 8,114.8,8 is 5.2 below the terrain surface (ground at 120 there)\n");
+    EXPECT_FALSE(std::filesystem::exists(out));
+    expect_success("render '" + set + "' -o '" + out + "' --size 16x16 --at 8,8 --agl 8");
 }
 
 TEST(Shading, NotANumberHeightGetsADefinedColor) {
