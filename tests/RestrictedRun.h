@@ -16,9 +16,25 @@
 
 namespace overflight::test {
 
+// AddressSanitizer reserves terabytes of address space for its shadow
+// memory, so a program built with it (the sanitizer build of the tests and of
+// `overflight`) cannot even start under RLIMIT_AS.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSpaceCanBeLimited = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSpaceCanBeLimited = false;
+#else
+inline constexpr bool kAddressSpaceCanBeLimited = true;
+#endif
+#else
+inline constexpr bool kAddressSpaceCanBeLimited = true;
+#endif
+
 struct Restrictions {
-    std::uint64_t address_space_bytes = 0; // RLIMIT_AS of the child; 0: unlimited
-    bool unprivileged = false;             // as user `nobody` when running as root
+    // RLIMIT_AS of the child; 0, or !kAddressSpaceCanBeLimited: unlimited.
+    std::uint64_t address_space_bytes = 0;
+    bool unprivileged = false; // as user `nobody` when running as root
 };
 
 inline std::string slurp(const std::string& path) {
@@ -44,7 +60,7 @@ inline RunResult run_overflight_restricted(const std::string& args, const Restri
         // Only async-signal-safe calls from here to exec.
         ::dup2(out, 1);
         ::dup2(err, 2);
-        if (limits.address_space_bytes) {
+        if (limits.address_space_bytes && kAddressSpaceCanBeLimited) {
             const rlimit cap{limits.address_space_bytes, limits.address_space_bytes};
             if (::setrlimit(RLIMIT_AS, &cap) != 0) ::_exit(126);
         }

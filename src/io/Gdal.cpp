@@ -11,8 +11,8 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
-#include <unistd.h>
 #include <mutex>
+#include <unistd.h>
 
 namespace overflight::gdal {
 

@@ -21,8 +21,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <filesystem>
+#include <limits>
 #include <new>
 #include <sstream>
 #include <unistd.h>
@@ -365,10 +365,6 @@ void warn_about_bands(GDALDatasetH ds, TerrainInfo& info) {
             ") is taken as heights" +
             (ci == GCI_RedBand ? " (an RGB image? give heights as TERRAIN and the image as --color)" : ""));
 }
-
-} // namespace
-
-namespace {
 
 DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::string& driver_name,
                      const std::string& color_path) {

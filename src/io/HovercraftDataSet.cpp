@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 namespace overflight {
 
@@ -68,9 +69,9 @@ void check_scales(const MapFile& map, const Image2D<std::uint16_t>& hf, const st
     if (const std::string problem = horizontal_scale_problem(hf.height, hf.width, map.h_scale); !problem.empty())
         throw Error(map_path, "h_scale = " + number(map.h_scale) + " for a " + std::to_string(hf.width) + "x" +
                                   std::to_string(hf.height) + " hf.pgm: " + problem);
-    const float v_scale = float(map.v_scale);
-    if (!(v_scale > 0) || !std::isfinite(v_scale))
-        throw Error(map_path, "v_scale = " + number(map.v_scale) + " is beyond float range");
+    for (const auto& [key, value] : {std::pair{"h_scale", map.h_scale}, std::pair{"v_scale", map.v_scale}})
+        if (!(float(value) > 0) || !std::isfinite(float(value)))
+            throw Error(map_path, std::string(key) + " = " + number(value) + " is beyond float range");
     const auto [lowest, highest] = std::minmax_element(hf.pixels.begin(), hf.pixels.end());
     for (const std::uint16_t sample : {*lowest, *highest}) {
         const double elevation = map.v_scale * double(sample) + map.y_offset;
@@ -112,7 +113,7 @@ DataSet load_hovercraft(const std::string& dir) {
     info.source = dir;
     info.kind = "hovercraft";
     info.driver = "PGM";
-    info.source_rows = t.rows();
+    info.source_rows = data.terrain.rows();
     info.source_cols = data.terrain.cols();
     info.metadata.emplace_back("PGM_MAXVAL", std::to_string(hf.maxval));
 

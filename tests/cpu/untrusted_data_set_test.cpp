@@ -47,6 +47,8 @@ TEST(UntrustedDataSet, HorizontalScaleBeyondFloatWorld) {
     expect_error("info '" + set + "'",
                  "overflight: " + set + "/map: h_scale = 1e+300 for a 3x3 hf.pgm: horizontal scale 1e+300 makes the "
                  "terrain 2e+300 units across, beyond the 16777216 (2^24) that float world coordinates hold\n");
+    const std::string tiny = data_set(dir, "h_scale = 1e-50\nv_scale = 1\n");
+    expect_error("info '" + tiny + "'", "overflight: " + tiny + "/map: h_scale = 1e-50 is beyond float range\n");
     expect_success("info '" + data_set(dir, "h_scale = 1e6\nv_scale = 1\n") + "'");
 }
 
