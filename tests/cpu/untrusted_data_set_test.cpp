@@ -2,6 +2,7 @@
 // numbers but no terrain: each must stop with one line naming the map file or
 // the option at fault (DESIGN sec. 6), never blame something else or render
 // garbage. Each test also runs the nearest good input, so it can fail.
+#include "RestrictedRun.h"
 #include "TestSupport.h"
 #include "core/Shading.h"
 #include "io/Pnm.h"
@@ -74,6 +75,18 @@ TEST(UntrustedDataSet, VehicleStartOutsideTheTerrainBlamesTheMap) {
     expect_error("sim '" + set + "' --steps 1",
                  "overflight: " + set + "/map: [vehicle] start x = 1000, z = 5 is outside the terrain (x 0..20, z 0..20)\n");
     expect_success("sim '" + data_set(dir, "h_scale = 10\nv_scale = 1\n[vehicle]\nx = 20\nz = 5\n") + "' --steps 1");
+}
+
+TEST(OutOfMemory, LastResortNamesWhatWasBeingLoaded) {
+    if (!test::kAddressSpaceCanBeLimited)
+        GTEST_SKIP() << "built with AddressSanitizer: the child cannot run in 512 MiB of address space";
+    // The demo generator sizes nothing from a file, so nothing checks its
+    // memory beforehand: a 16385^2 island (1.3 GB) under 512 MiB reaches main.
+    const test::Restrictions half_gib{512ull << 20, false};
+    const test::RunResult r = test::run_overflight_restricted("info demo --demo-size 16385", half_gib);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err, "overflight: demo: not enough memory to load it\n");
+    EXPECT_EQ(test::run_overflight_restricted("info demo --demo-size 65", half_gib).exit_code, 0);
 }
 
 TEST(UntrustedCamera, EyeUnderTheSurfaceIsRefused) {
