@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses (fuzz/*.cpp) with clang in their own build
-# directory and runs each for SECONDS (default 20) from a seed corpus written
-# here and the files under fuzz/corpus/HARNESS (real inputs, e.g. index.json
-# files made by `overflight tile`), failing on the first crash, leak,
-# sanitizer report or timeout.
+# Builds every libFuzzer harness (fuzz/NAME.cpp) with clang in its own build
+# directory and runs each for SECONDS (default 20), starting from its seed
+# corpus fuzz/corpus/NAME/ (kept in the repository, read only here), failing
+# on the first crash, leak, sanitizer report or timeout. A new harness is one
+# fuzz/NAME.cpp plus one fuzz/corpus/NAME/ folder of seeds.
 #
 #   .ci/fuzz.sh [SECONDS]        env: FUZZ_BUILD (default build-fuzz), JOBS (default 1)
 set -euo pipefail
@@ -11,7 +11,11 @@ set -euo pipefail
 seconds="${1:-20}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${FUZZ_BUILD:-$root/build-fuzz}"
-harnesses=(fuzz_pgm fuzz_ppm fuzz_map fuzz_tile_index)
+harnesses=()
+for src in "$root"/fuzz/*.cpp; do
+  harnesses+=("$(basename "$src" .cpp)")
+done
+[ ${#harnesses[@]} -gt 0 ] || { echo "no harness in $root/fuzz"; exit 1; }
 
 # Everything is instrumented for coverage (fuzzer-no-link), not only the
 # harnesses: the parsers under test live in overflight_io.
@@ -22,57 +26,28 @@ CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Re
   >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 cmake --build "$build" --target "${harnesses[@]}" -j"${JOBS:-1}"
 
-seeds="$build/seeds"
-rm -rf "$seeds"
-mkdir -p "$seeds/fuzz_pgm" "$seeds/fuzz_ppm" "$seeds/fuzz_map" "$seeds/fuzz_tile_index"
-printf 'P5\n3 2\n255\n\x00\x01\x02\xfd\xfe\xff' >"$seeds/fuzz_pgm/8bit"
-printf 'P5\n# comment\n2 2\n65535\n\x01\x02\xff\xff\x80\x00\x00\xff' >"$seeds/fuzz_pgm/16bit"
-printf 'P5 1 1 256\n\x01\x00' >"$seeds/fuzz_pgm/maxval256"
-printf 'P6\n2 1\n255\n\x01\x02\x03\xff\x00\x80' >"$seeds/fuzz_ppm/8bit"
-printf 'P6\n1 1\n65535\n\xff\xff\x80\x80\x00\x00' >"$seeds/fuzz_ppm/16bit"
-cat >"$seeds/fuzz_map/full" <<'MAP'
-h_scale = 10.0
-v_scale = 0.1
-y_offset = -5
-sun_dir = [0.3, 0.8, 0.5]
-sun_color = [1.0, 0.96, 0.9]
-fog_density = 0.0002
-fog_color = [0.72, 0.8, 0.9]
-[vehicle]
-x = 100.0
-z = 200.0
-heading = 90.0
-[[object]]
-kind = "box"
-x = 4890.0
-z = 13800.0
-width = 60.0
-height = 120.0
-depth = 60.0
-color = [200, 40, 40]
-[[object]]
-kind = "model"
-x = 1
-z = 2
-file = "tree.obj"
-[[line]]
-points = [[1000.0, 2000.0], [1400.0, 2100.0]]
-height = 40.0
-sag = 4.0
-MAP
-printf 'h_scale = 1\nv_scale = 1\n' >"$seeds/fuzz_map/minimal"
-printf 'h_scale = 1\nv_scale = 1\nsun_dir = [3e38, 0, 1]\nfog_density = 3.4e38\n' >"$seeds/fuzz_map/float_range"
-
 status=0
 for h in "${harnesses[@]}"; do
+  seeds="$root/fuzz/corpus/$h"
+  if [ ! -d "$seeds" ] || [ -z "$(ls -A "$seeds")" ]; then
+    echo "FAIL: $h has no seed corpus in fuzz/corpus/$h"
+    status=1
+    continue
+  fi
+  # New inputs go to the first folder (the build's working corpus), never into the repository.
   corpus="$build/corpus/$h"
   mkdir -p "$corpus"
   echo "== $h for ${seconds}s"
-  # The fuzzer writes crash-* reproducers into the build directory on failure.
-  stored=()
-  [ -d "$root/fuzz/corpus/$h" ] && stored=("$root/fuzz/corpus/$h")
+  # The seeds run first and on their own, so a regression seed fails at once
+  # with its name; then the fuzzer runs from them. Reproducers land in $build.
+  if ! (cd "$build" && "$build/fuzz/$h" -runs=0 "$seeds" >"$build/$h.seeds.log" 2>&1); then
+    tail -n 40 "$build/$h.seeds.log"
+    echo "FAIL: $h fails on a seed of fuzz/corpus/$h"
+    status=1
+    continue
+  fi
   if ! (cd "$build" && "$build/fuzz/$h" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
-        -rss_limit_mb=2048 -print_final_stats=1 "$corpus" "$seeds/$h" "${stored[@]}" 2>"$build/$h.log"); then
+        -rss_limit_mb=2048 -print_final_stats=1 "$corpus" "$seeds" 2>"$build/$h.log"); then
     tail -n 40 "$build/$h.log"
     echo "FAIL: $h crashed (reproducer in $build)"
     status=1

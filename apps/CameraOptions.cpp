@@ -144,6 +144,18 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
         cam.eye.y < t.min_height() - extent || cam.eye.y > t.max_height() + 100.0 * extent)
         throw Error("--eye", "eye " + num(cam.eye.x) + "," + num(cam.eye.y) + "," + num(cam.eye.z) +
                                  " is too far from the terrain (X 0.." + num(t.width()) + ", Z 0.." + num(t.depth()) + ")");
+    // An eye under the ground sees the inside of the terrain: one solid color.
+    // The ground is the higher of the two surface models (DESIGN sec. 1:
+    // blocks, the nearest sample; bilinear), as renderers use either.
+    if (t.contains(float(cam.eye.x), float(cam.eye.z))) {
+        const double ground = std::max(t.height_bilinear(float(cam.eye.x), float(cam.eye.z)),
+                                       t.height_nearest(float(cam.eye.x), float(cam.eye.z)));
+        if (cam.eye.y < ground)
+            throw Error(a.eye.empty() ? "--agl" : "--eye",
+                        "eye " + num(cam.eye.x) + "," + num(cam.eye.y) + "," + num(cam.eye.z) + " is " +
+                            num(ground - cam.eye.y) + " below the terrain surface (ground at " + num(ground) +
+                            " there)");
+    }
     if (a.heading) {
         if (!std::isfinite(*a.heading)) throw Error("--heading", "is not a number");
         cam.heading = *a.heading;

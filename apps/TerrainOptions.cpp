@@ -1,7 +1,10 @@
 #include "TerrainOptions.h"
 
+#include "Loading.h"
 #include "core/Error.h"
 #include "io/TileDirectory.h"
+
+#include <cstdio>
 
 namespace overflight::app {
 
@@ -15,12 +18,27 @@ void add_terrain_options(CLI::App& cmd, TerrainArgs& args) {
         ->capture_default_str();
 }
 
-DataSet load_terrain(const TerrainArgs& args) { return overflight::load_terrain(args.terrain, args.load); }
+namespace {
+
+DataSet reported(DataSet data, const TerrainArgs& args) {
+    if (args.warnings_on_stderr)
+        for (const std::string& w : data.info.warnings)
+            std::fprintf(stderr, "overflight: %s: warning: %s\n", data.info.source.c_str(), w.c_str());
+    return data;
+}
+
+} // namespace
+
+DataSet load_terrain(const TerrainArgs& args) {
+    const LoadingScope loading(args.terrain);
+    return reported(overflight::load_terrain(args.terrain, args.load), args);
+}
 
 DataSet load_terrain_lazily(const TerrainArgs& args) {
     if (!is_tile_directory(args.terrain)) return load_terrain(args);
     if (!args.load.color_path.empty()) throw Error("--color", "a tile directory brings its own colors");
-    return load_tile_directory_overview(args.terrain);
+    const LoadingScope loading(args.terrain);
+    return reported(load_tile_directory_overview(args.terrain), args);
 }
 
 } // namespace overflight::app

@@ -15,6 +15,7 @@ namespace overflight::app {
 struct TerrainArgs {
     std::string terrain;     // the positional argument
     LoadOptions load;        // --color, --demo-size
+    bool warnings_on_stderr = true; // TerrainInfo::warnings as "overflight: SOURCE: warning: ..." lines (not for info)
 };
 
 // Adds TERRAIN (required positional), --color FILE and --demo-size N to `cmd`;
@@ -22,7 +23,8 @@ struct TerrainArgs {
 // outlive the parse (keep it in a static or a shared_ptr owned by the callback).
 void add_terrain_options(CLI::App& cmd, TerrainArgs& args);
 
-// load_terrain(args.terrain, args.load); throws overflight::Error.
+// load_terrain(args.terrain, args.load), its warnings printed on stderr;
+// throws overflight::Error.
 DataSet load_terrain(const TerrainArgs& args);
 
 // As load_terrain, except that a tile directory (`overflight tile`) is opened

@@ -15,6 +15,7 @@ void add_info_command(CLI::App& app) {
         bool json = false;
     };
     auto args = std::make_shared<Args>();
+    args->terrain.warnings_on_stderr = false; // part of the report instead
     CLI::App* cmd = app.add_subcommand("info", "Describe a terrain: size, scales, elevation range, CRS, no-data, color");
     add_terrain_options(*cmd, args->terrain);
     cmd->add_flag("--json", args->json, "print one JSON object");

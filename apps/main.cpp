@@ -1,10 +1,13 @@
 // overflight: one program, one subcommand per job (DESIGN sec. 6).
 #include "Commands.h"
+#include "Loading.h"
 #include "OptionErrors.h"
 #include "core/Error.h"
 
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <string>
 
 int main(int argc, char** argv) {
     CLI::App app{"Overflight: fly over large height-field terrains with objects on them"};
@@ -22,6 +25,18 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const overflight::Error& e) {
         std::fprintf(stderr, "overflight: %s\n", overflight::app::in_option_terms(e).what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        // The last resort: loaders report their own sizes, but a process
+        // limit can still stop an allocation they could not foresee.
+        const std::string& what = overflight::app::being_loaded();
+        if (!what.empty()) {
+            std::fprintf(stderr, "overflight: %s: not enough memory to load it\n", what.c_str());
+        } else {
+            const auto commands = app.get_subcommands();
+            std::fprintf(stderr, "overflight: %s: not enough memory\n",
+                         commands.empty() ? "overflight" : commands.front()->get_name().c_str());
+        }
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "overflight: %s\n", e.what());

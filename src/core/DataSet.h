@@ -53,6 +53,10 @@ struct TerrainInfo {
     std::array<double, 6> geotransform{0, 1, 0, 0, 0, 1};
     std::string crs_wkt; // empty if none
     std::vector<std::pair<std::string, std::string>> metadata; // GDAL metadata (USGS Record A fields, ...)
+    // Surprises a user should hear of although the terrain loaded, e.g. an RGB
+    // image given as a DEM (band 1 taken as heights). `info` lists them, other
+    // commands print them on stderr.
+    std::vector<std::string> warnings;
 };
 
 struct DataSet {

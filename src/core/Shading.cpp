@@ -8,6 +8,14 @@
 
 namespace overflight {
 
+namespace {
+
+// Clamps to [0, 1] with NaN taken as 0: std::clamp passes NaN through, and a
+// NaN converted to uint8_t is undefined behaviour (C++20 [conv.fpint]).
+float unit_interval(float x) { return x > 0.0f ? std::min(x, 1.0f) : 0.0f; }
+
+} // namespace
+
 float hillshade(const Terrain& t, int row, int col, float azimuth_deg, float altitude_deg) {
     // Horn's 3x3 weighted gradient, edges clamped; same formula as gdaldem so
     // pictures read the same as a GIS user's hillshade layer.
@@ -25,14 +33,14 @@ float hillshade(const Terrain& t, int row, int col, float azimuth_deg, float alt
     const float zenith = (90.0f - altitude_deg) * kPi / 180.0f;
     const float azimuth = (360.0f - azimuth_deg + 90.0f) * kPi / 180.0f; // to math angle
     const float shade = std::cos(zenith) * std::cos(slope) + std::sin(zenith) * std::sin(slope) * std::cos(azimuth - aspect);
-    return std::clamp(shade, 0.0f, 1.0f);
+    return unit_interval(shade);
 }
 
 Rgb8 elevation_ramp(float height, float min_height, float max_height, float sea_level) {
     struct Stop { float t; float r, g, b; };
     if (height < sea_level) {
         // Deeper water is darker; depth relative to the deepest point.
-        const float depth = std::clamp((sea_level - height) / std::max(sea_level - min_height, 1.0f), 0.0f, 1.0f);
+        const float depth = unit_interval((sea_level - height) / std::max(sea_level - min_height, 1.0f));
         return Rgb8{std::uint8_t(40 - 20 * depth), std::uint8_t(110 - 50 * depth), std::uint8_t(170 - 50 * depth)};
     }
     static constexpr Stop stops[] = {
@@ -44,12 +52,12 @@ Rgb8 elevation_ramp(float height, float min_height, float max_height, float sea_
         {0.92f, 245, 245, 250}, // snow
         {1.00f, 255, 255, 255},
     };
-    const float t = std::clamp((height - sea_level) / std::max(max_height - sea_level, 1e-3f), 0.0f, 1.0f);
+    const float t = unit_interval((height - sea_level) / std::max(max_height - sea_level, 1e-3f));
     std::size_t k = 1;
     while (k + 1 < std::size(stops) && stops[k].t < t) ++k;
     const Stop& lo = stops[k - 1];
     const Stop& hi = stops[k];
-    const float s = std::clamp((t - lo.t) / (hi.t - lo.t), 0.0f, 1.0f);
+    const float s = unit_interval((t - lo.t) / (hi.t - lo.t));
     return Rgb8{std::uint8_t(lo.r + (hi.r - lo.r) * s), std::uint8_t(lo.g + (hi.g - lo.g) * s),
                 std::uint8_t(lo.b + (hi.b - lo.b) * s)};
 }

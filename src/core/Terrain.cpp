@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace overflight {
@@ -15,10 +16,40 @@ Terrain::Terrain(int rows, int cols, float h_scale, float v_scale, float y_offse
     if (rows < 2 || cols < 2 || rows > 65537 || cols > 65537)
         throw Error("terrain", "size " + std::to_string(rows) + "x" + std::to_string(cols) +
                                    " is outside 2..65537 samples per side");
-    if (!(h_scale > 0) || !std::isfinite(h_scale))
-        throw Error("terrain", "horizontal scale must be a positive number");
+    if (const std::string problem = horizontal_scale_problem(rows, cols, h_scale); !problem.empty())
+        throw Error("terrain", problem);
+    if (!std::isfinite(v_scale) || !std::isfinite(y_offset))
+        throw Error("terrain", "vertical scale and offset must be finite numbers");
     heights_.assign(std::size_t(rows) * std::size_t(cols), 0);
     colors_.assign(heights_.size(), Rgb8{128, 128, 128});
+}
+
+namespace {
+
+std::string number(double v) {
+    std::ostringstream s;
+    s.precision(8); // 2^24 in full; a float read from a file without its noise digits
+    s << v;
+    return s.str();
+}
+
+} // namespace
+
+std::string horizontal_scale_problem(int rows, int cols, double h_scale) {
+    if (!(h_scale > 0) || !std::isfinite(h_scale)) return "horizontal scale " + number(h_scale) + " is not a positive number";
+    const double extent = h_scale * double(std::max(rows, cols) - 1);
+    if (extent > kWorldLimit)
+        return "horizontal scale " + number(h_scale) + " makes the terrain " + number(extent) +
+               " units across, beyond the " + number(kWorldLimit) + " (2^24) that float world coordinates hold";
+    return {};
+}
+
+std::string elevation_problem(double elevation) {
+    if (!std::isfinite(elevation)) return "elevation " + number(elevation) + " is not a finite number";
+    if (std::abs(elevation) > kWorldLimit)
+        return "elevation " + number(elevation) + " is beyond +-" + number(kWorldLimit) +
+               " (2^24), where float world coordinates no longer hold whole units";
+    return {};
 }
 
 float Terrain::height_nearest(float x, float z) const {

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace overflight {
@@ -16,7 +17,10 @@ namespace overflight {
 class Terrain {
 public:
     Terrain() = default;
-    // Heights default to 0 and colors to mid grey. Throws Error for sizes < 2 or > 65537.
+    // Heights default to 0 and colors to mid grey. Throws Error("terrain", ...)
+    // for sizes < 2 or > 65537, a horizontal_scale_problem, or a v_scale or
+    // y_offset that is not finite; loaders check their input first, so that
+    // their errors name the file.
     Terrain(int rows, int cols, float h_scale, float v_scale = 1.0f, float y_offset = 0.0f);
 
     int rows() const { return rows_; }
@@ -68,6 +72,21 @@ private:
     std::vector<std::uint16_t> heights_;
     std::vector<Rgb8> colors_;
 };
+
+// World coordinates are floats (DESIGN sec. 1). Beyond 2^24 world units a
+// float no longer holds every whole unit, so neither the extent of a terrain
+// nor any of its elevations may lie farther than this from the origin: such
+// a height field cannot be drawn or flown over, whatever the file says.
+inline constexpr double kWorldLimit = 16777216.0;
+
+// Why rows x cols samples `h_scale` apart do not make a terrain's horizontal
+// extent (h_scale not a positive number, or an extent beyond kWorldLimit), or
+// an empty string when they do.
+std::string horizontal_scale_problem(int rows, int cols, double h_scale);
+
+// Why `elevation` (world units) is not a terrain height (not finite, or beyond
+// kWorldLimit), or an empty string when it is one.
+std::string elevation_problem(double elevation);
 
 // Zamri's rule (seed 001, sec. 3): the smallest 2^n+1 that is >= n.
 int next_pow2_plus1(int n);

@@ -112,13 +112,13 @@ int TileGrid::coarsest_level() const {
 
 TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
     if (!is_pow2_plus1(tile_size) || tile_size < 3)
-        throw Error("--tile-size", std::to_string(tile_size) + " is not 2^k+1 (3, 5, 9, ..., 257, 513, ...)");
+        throw Error("tile size", std::to_string(tile_size) + " is not 2^k+1 (3, 5, 9, ..., 257, 513, ...)");
     // At least 3x3: a 2x2 terrain still makes one tile with a centre sample.
     const int padded = std::max(3, next_pow2_plus1(std::max(terrain.rows(), terrain.cols())));
     TileGrid g;
     g.tile_size = std::min(tile_size, padded);
     if (g.tile_size > kMaxTileSize)
-        throw Error("--tile-size", std::to_string(tile_size) + " makes tiles of " + std::to_string(g.tile_size) +
+        throw Error("tile size", std::to_string(tile_size) + " makes tiles of " + std::to_string(g.tile_size) +
                                        " samples per side, more than the " + std::to_string(kMaxTileSize) + " a tile may have");
     g.tile_rows = g.tile_cols = (padded - 1) / g.stride();
     g.source_rows = terrain.rows();

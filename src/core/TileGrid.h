@@ -132,7 +132,7 @@ std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron,
 // tile_size (clamped to that square); tiles wholly outside the source are
 // flagged 0. Padding repeats the edge samples with darkened colors (as
 // pad_to_pow2_plus1 does) without copying the terrain. Throws
-// Error("--tile-size", ...) when tile_size is not 2^k+1 >= 3 or the clamped
+// Error("tile size", ...) when tile_size is not 2^k+1 >= 3 or the clamped
 // size exceeds kMaxTileSize.
 TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size);
 // The padded samples of one tile at `level` (every 2^level-th sample), with

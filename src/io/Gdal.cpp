@@ -7,8 +7,12 @@
 #include <cpl_string.h>
 #include <ogr_srs_api.h>
 
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <mutex>
+#include <unistd.h>
 
 namespace overflight::gdal {
 
@@ -55,6 +59,14 @@ Dataset open_raster(const std::string& path) {
     ensure_initialised();
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw Error(path, "no such file");
+    // GDAL reports a file it may not open as an unrecognised format: ask the
+    // system first, so that the user hears the real reason.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) {
+        if (errno == EACCES || errno == EPERM) throw Error(path, "permission denied");
+        throw Error(path, std::string("cannot open: ") + std::strerror(errno));
+    }
+    ::close(fd);
     CPLErrorReset();
     Dataset ds(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
     if (!ds) throw Error(path, "not a raster GDAL can read (" + last_error("unrecognised format") + ")");
@@ -62,11 +74,14 @@ Dataset open_raster(const std::string& path) {
     return ds;
 }
 
-Dataset create_mem(int cols, int rows, int bands, GDALDataType type, const double* geotransform, const std::string& wkt) {
+Dataset create_mem(const std::string& subject, int cols, int rows, int bands, GDALDataType type,
+                   const double* geotransform, const std::string& wkt) {
     ensure_initialised();
     GDALDriverH mem = GDALGetDriverByName("MEM");
     Dataset ds(GDALCreate(mem, "", cols, rows, bands, type, nullptr));
-    if (!ds) throw Error("memory", "cannot allocate a " + std::to_string(cols) + "x" + std::to_string(rows) + " raster");
+    if (!ds)
+        throw Error(subject, "not enough memory for a temporary " + std::to_string(cols) + "x" + std::to_string(rows) +
+                                 " raster");
     if (geotransform) GDALSetGeoTransform(ds.get(), const_cast<double*>(geotransform));
     if (!wkt.empty()) GDALSetProjection(ds.get(), wkt.c_str());
     return ds;

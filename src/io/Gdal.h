@@ -26,9 +26,10 @@ using Dataset = std::unique_ptr<void, DatasetCloser>;
 // Opens a raster read-only; Error(path, ...) when missing or not a raster GDAL reads.
 Dataset open_raster(const std::string& path);
 
-// A MEM dataset of rows x cols x bands of `type`, georeferenced when gt/wkt are given.
-Dataset create_mem(int cols, int rows, int bands, GDALDataType type, const double* geotransform = nullptr,
-                   const std::string& wkt = "");
+// A MEM dataset of rows x cols x bands of `type`, georeferenced when gt/wkt are
+// given; Error(subject, ...) (the file it is made from) when memory runs out.
+Dataset create_mem(const std::string& subject, int cols, int rows, int bands, GDALDataType type,
+                   const double* geotransform = nullptr, const std::string& wkt = "");
 
 // GDALTranslate / GDALWarp to an in-memory dataset with gdal_translate /
 // gdalwarp command-line options (the "-of MEM" is added here). Error(subject, ...) on failure.

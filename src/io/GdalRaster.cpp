@@ -6,6 +6,7 @@
 
 #include "core/Error.h"
 #include "core/Shading.h"
+#include "core/Terrain.h"
 #include "io/Gdal.h"
 #include "io/HeightMapping.h"
 #include "io/UsgsDemHeader.h"
@@ -20,8 +21,11 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
+#include <new>
 #include <sstream>
+#include <unistd.h>
 
 namespace overflight {
 
@@ -124,6 +128,23 @@ Srs utm_for(OGRSpatialReferenceH src, double lon, double lat) {
     return utm;
 }
 
+// Largest side of a Terrain (2^16 + 1 samples, core/Terrain.h).
+constexpr int kMaxSide = 65537;
+// Peak bytes per sample while loading: float elevations, a float copy for
+// no-data filling or warping, 16-bit heights, RGB colors, with slack for
+// GDAL's own buffers.
+constexpr double kLoadBytesPerSample = 16;
+
+// Record A of a USGS DEM is its first 1024-byte record (seed 001, sec. 3).
+std::string usgs_record_a_text(const std::string& path) {
+    std::string head(1024, ' ');
+    if (FILE* f = std::fopen(path.c_str(), "rb")) {
+        head.resize(std::fread(head.data(), 1, head.size(), f));
+        std::fclose(f);
+    }
+    return head;
+}
+
 struct Grid {
     int rows = 0, cols = 0;
     std::vector<float> z;     // elevations in metres, kNoData where missing
@@ -133,19 +154,24 @@ struct Grid {
 };
 
 void read_band(GDALRasterBandH band, int cols, int rows, std::vector<float>& out, const std::string& subject) {
-    out.resize(std::size_t(rows) * std::size_t(cols));
+    try {
+        out.resize(std::size_t(rows) * std::size_t(cols));
+    } catch (const std::bad_alloc&) {
+        throw Error(subject, "not enough memory for a " + std::to_string(cols) + "x" + std::to_string(rows) + " raster");
+    }
     CPLErrorReset();
     if (GDALRasterIO(band, GF_Read, 0, 0, cols, rows, out.data(), cols, rows, GDT_Float32, 0, 0) != CE_None)
         throw Error(subject, "unreadable raster: " + gdal::last_error("read failed"));
 }
 
-gdal::Dataset grid_dataset(const Grid& g) {
-    gdal::Dataset ds = gdal::create_mem(g.cols, g.rows, 1, GDT_Float32, g.georeferenced ? g.gt : nullptr, g.wkt);
+gdal::Dataset grid_dataset(const Grid& g, const std::string& subject) {
+    gdal::Dataset ds =
+        gdal::create_mem(subject, g.cols, g.rows, 1, GDT_Float32, g.georeferenced ? g.gt : nullptr, g.wkt);
     GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
     GDALSetRasterNoDataValue(band, kNoData);
     if (GDALRasterIO(band, GF_Write, 0, 0, g.cols, g.rows, const_cast<float*>(g.z.data()), g.cols, g.rows, GDT_Float32,
                      0, 0) != CE_None)
-        throw Error("memory", "cannot write a temporary raster");
+        throw Error(subject, "cannot write a temporary raster: " + gdal::last_error("write failed"));
     return ds;
 }
 
@@ -169,7 +195,7 @@ void fill_nodata(Grid& g, const std::string& subject) {
     // a 1-degree tile), and a search over the whole grid only if that left any.
     const int whole = std::max(g.rows, g.cols);
     for (const int distance : {std::min(256, whole), whole}) {
-        gdal::Dataset ds = grid_dataset(g);
+        gdal::Dataset ds = grid_dataset(g, subject);
         GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
         CPLErrorReset();
         if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
@@ -286,39 +312,74 @@ std::vector<std::pair<std::string, std::string>> metadata_of(GDALDatasetH ds, co
     };
     add_list(GDALGetMetadata(ds, nullptr), "");
     add_list(GDALGetMetadata(GDALGetRasterBand(ds, 1), nullptr), "BAND1_");
-    if (driver == "USGSDEM") {
-        // Record A is the first 1024-byte record (seed 001, sec. 3).
-        std::string head(1024, ' ');
-        if (FILE* f = std::fopen(path.c_str(), "rb")) {
-            head.resize(std::fread(head.data(), 1, head.size(), f));
-            std::fclose(f);
-        }
-        for (auto& kv : usgs_record_a(head)) out.push_back(std::move(kv));
-    }
+    if (driver == "USGSDEM")
+        for (auto& kv : usgs_record_a(usgs_record_a_text(path))) out.push_back(std::move(kv));
     return out;
 }
 
-} // namespace
+// The sizes a raster declares, checked before anything is allocated from them:
+// a few bytes of header can claim billions of samples (a sparse GeoTIFF, a
+// USGS Record A with a false profile count).
+void check_declared_size(GDALDatasetH ds, const std::string& path, const std::string& driver) {
+    if (driver == "USGSDEM") {
+        // GDAL sizes the grid by Record A's profile count; each profile needs a
+        // Record B in the file (USGS DEM Standards Part 2).
+        const long profiles = usgs_profile_count(usgs_record_a_text(path));
+        std::error_code ec;
+        const auto bytes = std::filesystem::file_size(path, ec);
+        if (profiles > kMaxSide)
+            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles, more than " +
+                                  std::to_string(kMaxSide));
+        if (!ec && profiles > 0 && (long long)bytes < usgs_minimum_file_size(profiles))
+            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles but the file holds only " +
+                                  std::to_string(bytes) + " bytes (at least " +
+                                  std::to_string(kUsgsRecordBHeaderBytes) + " per profile)");
+    }
+    const int cols = GDALGetRasterXSize(ds), rows = GDALGetRasterYSize(ds);
+    if (rows < 2 || cols < 2)
+        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) +
+                              ", a terrain needs at least 2x2 samples");
+    if (rows > kMaxSide || cols > kMaxSide)
+        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", more than " +
+                              std::to_string(kMaxSide) + " samples per side");
+    // Loading holds the elevations as floats, a float copy for GDAL's no-data
+    // filling or warping, and the terrain's 16-bit heights and RGB colors.
+    const double needed = double(rows) * double(cols) * kLoadBytesPerSample;
+    const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    if (memory > 0 && needed > memory)
+        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", loading it needs about " +
+                              fmt(needed / 1073741824.0, 3) + " GiB, more than this machine's " +
+                              fmt(memory / 1073741824.0, 3) + " GiB of memory");
+}
 
-DataSet load_gdal_raster(const std::string& path, const std::string& color_path) {
-    gdal::Dataset src = gdal::open_raster(path);
+// What a user should know about the bands: only band 1 is read as heights.
+void warn_about_bands(GDALDatasetH ds, TerrainInfo& info) {
+    const int bands = GDALGetRasterCount(ds);
+    GDALRasterBandH first = GDALGetRasterBand(ds, 1);
+    const GDALColorInterp ci = GDALGetRasterColorInterpretation(first);
+    if (GDALGetRasterColorTable(first) != nullptr)
+        info.warnings.push_back("band 1 is a palette image: its color indices are taken as heights");
+    else if (bands > 1)
+        info.warnings.push_back(
+            "has " + std::to_string(bands) + " bands; band 1 (" + lower(GDALGetColorInterpretationName(ci)) +
+            ") is taken as heights" +
+            (ci == GCI_RedBand ? " (an RGB image? give heights as TERRAIN and the image as --color)" : ""));
+}
+
+DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::string& driver_name,
+                     const std::string& color_path) {
     DataSet data;
     TerrainInfo& info = data.info;
     info.source = path;
     info.kind = "gdal";
-    GDALDriverH driver = GDALGetDatasetDriver(src.get());
-    info.driver = driver ? GDALGetDriverShortName(driver) : "?";
-    Grid grid = grid_of(src.get(), path);
+    info.driver = driver_name;
+    warn_about_bands(src_ds, info);
+    Grid grid = grid_of(src_ds, path);
     info.source_rows = grid.rows;
     info.source_cols = grid.cols;
-    if (grid.rows < 2 || grid.cols < 2)
-        throw Error(path, "raster is " + std::to_string(grid.cols) + "x" + std::to_string(grid.rows) +
-                              ", a terrain needs at least 2x2 samples");
-    if (grid.rows > 65537 || grid.cols > 65537)
-        throw Error(path, "raster is larger than 65537 samples per side");
 
     // Elevations to metres (band scale/offset, then the unit type).
-    GDALRasterBandH band = GDALGetRasterBand(src.get(), 1);
+    GDALRasterBandH band = GDALGetRasterBand(src_ds, 1);
     int has_nodata = 0;
     const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
     int has_scale = 0, has_offset = 0;
@@ -329,25 +390,33 @@ DataSet load_gdal_raster(const std::string& path, const std::string& color_path)
     info.unit_to_metre = metres_per_unit(unit ? unit : "", info.vertical_units);
     long long voids = 0;
     bool integral = true; // whole metres in the source: kept exact (v_scale = 1) when not resampled
-    for (float& v : grid.z) {
+    for (std::size_t i = 0; i < grid.z.size(); ++i) {
+        float& v = grid.z[i];
         const bool missing = !std::isfinite(v) || (has_nodata && (double(v) == nodata || float(nodata) == v));
         if (missing) {
             v = kNoData;
             ++voids;
-        } else {
-            v = float((double(v) * scale + offset) * info.unit_to_metre);
-            integral = integral && v == std::round(v);
+            continue;
         }
+        // Rejected here, naming the file: such a value would otherwise become
+        // an infinite elevation range that later steps blame on something else.
+        const double metres = (double(v) * scale + offset) * info.unit_to_metre;
+        if (const std::string problem = elevation_problem(metres); !problem.empty())
+            throw Error(path, "row " + std::to_string(i / std::size_t(grid.cols)) + ", column " +
+                                  std::to_string(i % std::size_t(grid.cols)) + ": " + problem +
+                                  " (not a terrain height; is the no-data value set?)");
+        v = float(metres);
+        integral = integral && v == std::round(v);
     }
     if (voids == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
-    info.metadata = metadata_of(src.get(), path, info.driver);
+    info.metadata = metadata_of(src_ds, path, info.driver);
 
     // Georeferencing: decide whether the grid must be warped to square metric cells.
     const bool real_gt = grid.georeferenced &&
                          !(grid.gt[0] == 0 && grid.gt[1] == 1 && grid.gt[2] == 0 && grid.gt[3] == 0 &&
                            grid.gt[4] == 0 && grid.gt[5] == 1);
     grid.georeferenced = real_gt;
-    OGRSpatialReferenceH srs = GDALGetSpatialRef(src.get());
+    OGRSpatialReferenceH srs = GDALGetSpatialRef(src_ds);
     if (!real_gt) srs = nullptr; // a CRS without a geotransform places nothing
     info.source_crs = srs_name(srs);
     info.crs = info.source_crs;
@@ -373,7 +442,7 @@ DataSet load_gdal_raster(const std::string& path, const std::string& color_path)
     if (!warp_opts.empty()) {
         warp_opts.insert(warp_opts.end(), {"-r", "bilinear", "-srcnodata", fmt(kNoData, 9), "-dstnodata",
                                            fmt(kNoData, 9), "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA"});
-        gdal::Dataset source = grid_dataset(grid);
+        gdal::Dataset source = grid_dataset(grid, path);
         gdal::Dataset warped = gdal::warp(source.get(), warp_opts, path);
         grid = grid_of(warped.get(), path);
         grid.georeferenced = true;
@@ -393,7 +462,8 @@ DataSet load_gdal_raster(const std::string& path, const std::string& color_path)
         }
         if (target && OSRIsProjected(target)) hs *= OSRGetLinearUnits(target, nullptr);
     }
-    if (!(hs > 0) || !std::isfinite(hs)) throw Error(path, "pixel size is not a positive number");
+    if (const std::string problem = horizontal_scale_problem(grid.rows, grid.cols, hs); !problem.empty())
+        throw Error(path, "pixel size: " + problem);
 
     long long missing = 0;
     for (float v : grid.z) missing += v == kNoData;
@@ -442,6 +512,23 @@ DataSet load_gdal_raster(const std::string& path, const std::string& color_path)
         info.color_source = "elevation ramp + hillshade";
     }
     return data;
+}
+
+} // namespace
+
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path) {
+    gdal::Dataset src = gdal::open_raster(path);
+    GDALDriverH driver = GDALGetDatasetDriver(src.get());
+    const std::string driver_name = driver ? GDALGetDriverShortName(driver) : "?";
+    check_declared_size(src.get(), path, driver_name);
+    try {
+        return load_checked(src.get(), path, driver_name, color_path);
+    } catch (const std::bad_alloc&) {
+        // Sizes were checked against the machine's memory, not against a
+        // process limit (ulimit -v) or what other programs hold.
+        throw Error(path, "not enough memory to load a " + std::to_string(GDALGetRasterXSize(src.get())) + "x" +
+                              std::to_string(GDALGetRasterYSize(src.get())) + " raster");
+    }
 }
 
 } // namespace overflight

@@ -27,9 +27,14 @@ namespace overflight {
 //    (Landsat-like) image, else bands 1,2,3, a single band as grey; non-Byte
 //    bands are rescaled from their min..max to 0..255. Without it,
 //    shade_by_elevation with the sea at 0 m.
-// info records all of this. Throws Error(path or color_path, problem) for a
-// missing, unreadable or garbage file, a raster smaller than 2x2, or one that is
-// entirely no-data.
+// info records all of this; a raster of several bands, or with a palette, gets
+// a warning (only band 1 is read as heights). Throws Error(path or color_path,
+// problem) for a missing, unreadable (permission denied) or garbage file, a
+// raster smaller than 2x2 or larger than 65537 samples per side, a USGS DEM
+// whose Record A declares more profiles than the file holds, a raster that
+// needs more memory than the machine has (all checked before reading any
+// sample) or than the process may use, an elevation or extent beyond
+// kWorldLimit (core/Terrain.h), or one that is entirely no-data.
 DataSet load_gdal_raster(const std::string& path, const std::string& color_path = "");
 
 } // namespace overflight

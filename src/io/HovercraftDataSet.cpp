@@ -8,7 +8,11 @@
 #include "io/MapFile.h"
 #include "io/Pnm.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <sstream>
+#include <utility>
 
 namespace overflight {
 
@@ -50,6 +54,35 @@ ColorImage sample_colors_to_cells(const Terrain& t) {
     return out;
 }
 
+namespace {
+
+std::string number(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+// The map's scales are doubles but the terrain holds floats: they must give a
+// terrain whose extent and elevations float world coordinates can hold, and
+// the error must name the map, not the terrain built from it.
+void check_scales(const MapFile& map, const Image2D<std::uint16_t>& hf, const std::string& map_path) {
+    if (const std::string problem = horizontal_scale_problem(hf.height, hf.width, map.h_scale); !problem.empty())
+        throw Error(map_path, "h_scale = " + number(map.h_scale) + " for a " + std::to_string(hf.width) + "x" +
+                                  std::to_string(hf.height) + " hf.pgm: " + problem);
+    for (const auto& [key, value] : {std::pair{"h_scale", map.h_scale}, std::pair{"v_scale", map.v_scale}})
+        if (!(float(value) > 0) || !std::isfinite(float(value)))
+            throw Error(map_path, std::string(key) + " = " + number(value) + " is beyond float range");
+    const auto [lowest, highest] = std::minmax_element(hf.pixels.begin(), hf.pixels.end());
+    for (const std::uint16_t sample : {*lowest, *highest}) {
+        const double elevation = map.v_scale * double(sample) + map.y_offset;
+        if (const std::string problem = elevation_problem(elevation); !problem.empty())
+            throw Error(map_path, "v_scale = " + number(map.v_scale) + ", y_offset = " + number(map.y_offset) +
+                                      ": for sample " + std::to_string(sample) + " of hf.pgm, " + problem);
+    }
+}
+
+} // namespace
+
 DataSet load_hovercraft(const std::string& dir) {
     const fs::path root(dir);
     const std::string map_path = (root / "map").string();
@@ -63,9 +96,16 @@ DataSet load_hovercraft(const std::string& dir) {
     if (hf.image.width < 2 || hf.image.height < 2)
         throw Error(hf_path, "height field must be at least 2x2 samples");
 
+    check_scales(map, hf.image, map_path);
+
     DataSet data;
     data.terrain = Terrain(hf.image.height, hf.image.width, float(map.h_scale), float(map.v_scale), float(map.y_offset));
     data.terrain.heights() = std::move(hf.image.pixels);
+    const Terrain& t = data.terrain;
+    if (map.start.given && !t.contains(float(map.start.x), float(map.start.z)))
+        throw Error(map_path, "[vehicle] start x = " + number(map.start.x) + ", z = " + number(map.start.z) +
+                                  " is outside the terrain (x 0.." + number(t.width()) + ", z 0.." +
+                                  number(t.depth()) + ")");
     data.environment = map.environment;
     data.start = map.start;
     data.scene = std::move(map.scene);

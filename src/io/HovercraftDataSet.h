@@ -15,8 +15,10 @@ namespace overflight {
 // may have one pixel per grid cell ((rows-1) x (cols-1): each sample takes the
 // mean of the up to four cells around it) or one per sample (rows x cols); when
 // it is absent the terrain is shaded by elevation. Throws Error(file, problem)
-// for a missing map or hf.pgm, a bad map, a bad PGM/PPM, or a PPM whose size
-// matches neither convention.
+// for a missing map or hf.pgm, a bad map, a bad PGM/PPM, a PPM whose size
+// matches neither convention, and Error(map, ...) for scales that give an
+// extent or elevations beyond kWorldLimit (core/Terrain.h) or do not fit a
+// float, and a [vehicle] start outside the terrain.
 DataSet load_hovercraft(const std::string& dir);
 
 // Writes `data` as a data set into `dir` (created if needed): map, hf.pgm

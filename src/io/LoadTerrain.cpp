@@ -25,7 +25,11 @@ DataSet load_terrain(const std::string& arg, const LoadOptions& options) {
         data.info.kind = "demo";
         return data;
     }
-    if (!fs::exists(arg, ec)) throw Error(arg, "no such file or directory");
+    if (!fs::exists(arg, ec)) {
+        // A folder on the way that may not be searched hides the file.
+        if (ec == std::errc::permission_denied) throw Error(arg, "permission denied");
+        throw Error(arg, "no such file or directory");
+    }
     if (fs::is_directory(arg, ec)) {
         if (is_tile_directory(arg)) {
             if (!options.color_path.empty()) throw Error("--color", "a tile directory brings its own colors");

@@ -31,10 +31,12 @@ Rgb8 color_value(const toml::table& table, std::string_view key, Rgb8 fallback, 
         throw Error(subject, at_line(*n) + where + std::string(key) + " must be [r, g, b] with integers 0..255");
     std::uint8_t c[3];
     for (std::size_t i = 0; i < 3; ++i) {
-        const auto v = (*a)[i].value<std::int64_t>();
-        if (!(*a)[i].is_integer() || !v || *v < 0 || *v > 255)
+        // The type first: toml++'s value<int64_t>() converts a float such as
+        // 3e40 to an integer without a range check, which is undefined.
+        const toml::value<std::int64_t>* v = (*a)[i].as_integer();
+        if (!v || v->get() < 0 || v->get() > 255)
             throw Error(subject, at_line(*n) + where + std::string(key) + " must be [r, g, b] with integers 0..255");
-        c[i] = std::uint8_t(*v);
+        c[i] = std::uint8_t(v->get());
     }
     return Rgb8{c[0], c[1], c[2]};
 }

@@ -52,6 +52,7 @@ nlohmann::ordered_json report(const DataSet& data) {
         j["vehicle"] = {{"x", data.start.x}, {"z", data.start.z}, {"heading", data.start.heading}};
     else
         j["vehicle"] = nullptr;
+    j["warnings"] = info.warnings;
     nlohmann::ordered_json md = nlohmann::ordered_json::object();
     for (const auto& [key, value] : info.metadata) md[key] = value;
     j["metadata"] = md;
@@ -70,11 +71,12 @@ std::string terrain_report_text(const DataSet& data) {
     const nlohmann::ordered_json j = report(data);
     std::ostringstream out;
     for (const auto& [key, value] : j.items()) {
-        if (key == "metadata") continue;
+        if (key == "metadata" || key == "warnings") continue;
         const std::string s = plain(value);
         if (s.empty()) continue;
         out << key << ": " << s << "\n";
     }
+    for (const std::string& w : data.info.warnings) out << "warning: " << w << "\n";
     if (!data.info.metadata.empty()) {
         out << "metadata:\n";
         for (const auto& [key, value] : data.info.metadata) out << "  " << key << " = " << value << "\n";

@@ -15,7 +15,8 @@ std::string terrain_report_text(const DataSet& data);
 // h_scale, v_scale, y_offset, elevation_min, elevation_max, nodata_filled,
 // nodata_method, crs, source_crs, reprojected, reprojection, extent_x,
 // extent_z, color_source, metadata (object), source, kind, driver,
-// vertical_units, source_rows, source_cols, objects, lines, vehicle (object or null).
+// vertical_units, source_rows, source_cols, objects, lines, vehicle (object or
+// null), warnings (array of strings; "warning: ..." lines in the text report).
 std::string terrain_report_json(const DataSet& data);
 
 } // namespace overflight

@@ -1,7 +1,10 @@
 // Based on: USGS DEM Standards Part 2 (1992), Record A; Zamri (seed 001), sec. 3.
 #include "io/UsgsDemHeader.h"
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 
 namespace overflight {
@@ -30,6 +33,16 @@ bool parse_real(std::string s, double& out) {
     return end && *end == '\0';
 }
 
+// An integer field: blank, trailing garbage or out of range gives nullopt.
+std::optional<long> parse_integer(const std::string& s) {
+    if (s.empty()) return std::nullopt;
+    errno = 0;
+    char* end = nullptr;
+    const long v = std::strtol(s.c_str(), &end, 10);
+    if (errno == ERANGE || !end || *end != '\0') return std::nullopt;
+    return v;
+}
+
 std::string format_real(double v) {
     std::ostringstream o;
     o.precision(10);
@@ -45,10 +58,8 @@ std::vector<std::pair<std::string, std::string>> usgs_record_a(const std::string
         if (!value.empty()) out.emplace_back(key, value);
     };
     auto integer = [&](std::size_t first, std::size_t last) -> std::string {
-        const std::string s = columns(text, first, last);
-        char* end = nullptr;
-        const long v = std::strtol(s.c_str(), &end, 10);
-        return (!s.empty() && end && *end == '\0') ? std::to_string(v) : std::string();
+        const auto v = parse_integer(columns(text, first, last));
+        return v ? std::to_string(*v) : std::string();
     };
     auto real = [&](std::size_t first, std::size_t last) -> std::string {
         double v;
@@ -84,6 +95,16 @@ std::vector<std::pair<std::string, std::string>> usgs_record_a(const std::string
     add("USGS_ROWS", integer(853, 858));
     add("USGS_PROFILES", integer(859, 864));
     return out;
+}
+
+long usgs_profile_count(const std::string& text) {
+    const auto v = parse_integer(columns(text, 859, 864));
+    return v && *v >= 0 ? *v : -1;
+}
+
+long long usgs_minimum_file_size(long profiles) {
+    // Record A takes at least the 864 columns up to element 16.
+    return 864 + std::max(0L, profiles) * kUsgsRecordBHeaderBytes;
 }
 
 } // namespace overflight

@@ -20,4 +20,16 @@ namespace overflight {
 // left out; text shorter than a record yields what fits. Never throws.
 std::vector<std::pair<std::string, std::string>> usgs_record_a(const std::string& text);
 
+// The number of profiles (Record A element 16, "n": columns of the grid) that
+// `text` declares, or -1 when the field is blank or malformed. Never throws.
+long usgs_profile_count(const std::string& text);
+
+// The fewest bytes a file declaring `profiles` profiles can hold: each profile
+// starts with a Record B whose elements 1-5 (row and column, m and n, the
+// planimetric origin, the datum and the elevation range) take 144 columns, so
+// a Record A claiming more profiles than the file has room for is false and
+// is rejected before anything is sized from it.
+inline constexpr long long kUsgsRecordBHeaderBytes = 144;
+long long usgs_minimum_file_size(long profiles);
+
 } // namespace overflight

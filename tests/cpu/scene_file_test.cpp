@@ -115,6 +115,22 @@ TEST(SceneFile, WrongTypedColor) {
               std::string::npos);
 }
 
+TEST(SceneFile, FloatColorBeyondIntegerRange) {
+    // toml++ converts a float to int64 without a range check (undefined for
+    // 3e40): a color must be checked to be an integer before it is read as one.
+    for (const char* value : {"3E40", "3e40", "-3e40", "255.0", "nan"}) {
+        const std::string p =
+            problem_of("[[object]]\nkind = \"box\"\nx = 1\nz = 1\ncolor = [" + std::string(value) + ", 0, 0]\n");
+        EXPECT_EQ(p, "line 5: color must be [r, g, b] with integers 0..255") << value;
+        EXPECT_NE(problem_of("[[line]]\npoints = [[0, 0], [1, 1]]\ncolor = [0, " + std::string(value) + ", 0]\n")
+                      .find("color must be [r, g, b] with integers 0..255"),
+                  std::string::npos)
+            << value;
+    }
+    EXPECT_EQ(parse_scene("[[object]]\nkind = \"box\"\nx = 1\nz = 1\ncolor = [255, 0, 7]\n", "s").objects[0].color,
+              (Rgb8{255, 0, 7}));
+}
+
 TEST(SceneFile, ModelWithoutFile) {
     EXPECT_NE(problem_of("[[object]]\nkind = \"model\"\nx = 1\nz = 1\n").find("without file"), std::string::npos);
 }
