@@ -4,6 +4,7 @@
 // (roam), Zamri, seed 001 (quadtree); DESIGN sec. 6.
 #include "RenderMethods.h"
 
+#include "OptionValues.h"
 #include "QuadtreeMethod.h"
 #include "RoamMethod.h"
 #include "core/Error.h"
@@ -54,11 +55,14 @@ void add_render_settings(CLI::App& cmd, RenderSettings& s) {
                    "voxel: near the eye, where a cell spans more pixels, put slices closer than one cell so that a "
                    "step spans at most this many pixels (down to 1/8 cell); 0 = one cell everywhere as in the paper")
         ->capture_default_str();
-    cmd.add_option("--triangles", s.triangles, "roam: triangle budget per frame")->capture_default_str();
+    cmd.add_option("--triangles", s.triangles, "roam: triangle budget per frame")
+        ->transform(decimal<int>())
+        ->capture_default_str();
     cmd.add_option("--error", s.error_px, "quadtree: screen-space error target in pixels")->capture_default_str();
     cmd.add_option("--cache-mib", s.cache_mib,
                    "quadtree: memory bound of the tile cache in MiB (far tiles load reduced; a view that needs more "
                    "streams its tiles within the frame)")
+        ->transform(decimal<int>())
         ->capture_default_str();
 }
 

@@ -6,6 +6,7 @@
 // (seed 003), and Zamri's accuracy of the LOD meshes against the full mesh.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "OptionValues.h"
 #include "RenderMethods.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
@@ -214,10 +215,11 @@ void add_bench_command(CLI::App& app) {
     add_render_settings(*cmd, args->settings);
     cmd->add_option("--frames", args->frames,
                     "timed frames per method after one warm-up frame (a method slower than 15 s in all stops at 3)")
+        ->transform(decimal<int>())
         ->capture_default_str();
     cmd->add_option("--methods", args->methods, "comma-separated methods (default: all but raymarch; known: " +
                                                    render_method_names() + ")");
-    cmd->add_option("--threads", args->threads, "worker threads (default: all cores)");
+    cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->transform(decimal<int>());
     cmd->add_flag("--json", args->json, "print one JSON object {\"runs\": [...]}");
     cmd->add_flag("--markdown", args->markdown, "print Markdown tables (the default without --json)");
     cmd->callback([args] {

@@ -4,7 +4,9 @@
 // depth TIFF), with timings and counts as one JSON object on stdout.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "OptionValues.h"
 #include "RenderMethods.h"
+#include "StandardOutput.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "io/ImageWriters.h"
@@ -39,7 +41,8 @@ void add_render_command(CLI::App& app) {
     add_render_settings(*cmd, args->settings);
     cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
-    cmd->callback([args] {
+    cmd->callback([args, cmd] {
+        reject_empty_names(*cmd, {"-o", "--depth", "--scene", "--color"});
         const RenderMethod* method = &find_render_method(args->method);
         auto t0 = std::chrono::steady_clock::now();
         const DataSet data =
@@ -59,14 +62,14 @@ void add_render_command(CLI::App& app) {
         renderer->render(camera, color, depth, stats);
         const double ms_render = ms_since(t0);
         t0 = std::chrono::steady_clock::now();
-        write_png(args->out, color);
-        if (!args->depth.empty()) {
-            try {
-                write_depth_tiff(args->depth, depth);
-            } catch (...) {
-                std::remove(args->out.c_str()); // no half-written output
-                throw;
-            }
+        // The depth first: if it fails, -o has not been touched; if the PNG
+        // fails, the new depth goes too (no half of a result left behind).
+        if (!args->depth.empty()) write_depth_tiff(args->depth, depth);
+        try {
+            write_png(args->out, color);
+        } catch (...) {
+            if (!args->depth.empty()) std::remove(args->depth.c_str());
+            throw;
         }
         const double ms_write = ms_since(t0);
         if (args->stats) {
@@ -77,8 +80,7 @@ void add_render_command(CLI::App& app) {
             stats["ms"]["terrain_load"] = ms_load; // quadtree has its own "load" (tiles)
             stats["ms"]["render"] = ms_render;
             stats["ms"]["write"] = ms_write;
-            const std::string text = stats.dump() + "\n";
-            std::fwrite(text.data(), 1, text.size(), stdout);
+            write_stdout(stats.dump() + "\n");
         }
     });
 }
