@@ -9,6 +9,7 @@
 #include "StandardOutput.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
+#include "io/Files.h"
 #include "io/ImageWriters.h"
 #include "io/TileDirectory.h"
 
@@ -43,6 +44,9 @@ void add_render_command(CLI::App& app) {
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
     cmd->callback([args, cmd] {
         reject_empty_names(*cmd, {"-o", "--depth", "--scene", "--color"});
+        // A bad output name is refused before the work, not after it.
+        check_output_folder(args->out);
+        if (!args->depth.empty()) check_output_folder(args->depth);
         const RenderMethod* method = &find_render_method(args->method);
         auto t0 = std::chrono::steady_clock::now();
         const DataSet data =
