@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (fuzz/*.cpp) with clang in their own build
 # directory and runs each for SECONDS (default 20) from a seed corpus written
-# here, failing on the first crash, leak, sanitizer report or timeout.
+# here and the one under fuzz/corpus/HARNESS/ when there is one, failing on
+# the first crash, leak, sanitizer report or timeout.
 #
 #   .ci/fuzz.sh [SECONDS]        env: FUZZ_BUILD (default build-fuzz), JOBS (default 1)
 set -euo pipefail
@@ -9,7 +10,7 @@ set -euo pipefail
 seconds="${1:-20}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${FUZZ_BUILD:-$root/build-fuzz}"
-harnesses=(fuzz_pgm fuzz_ppm fuzz_map)
+harnesses=(fuzz_pgm fuzz_ppm fuzz_map fuzz_flight_record)
 
 # Everything is instrumented for coverage (fuzzer-no-link), not only the
 # harnesses: the parsers under test live in overflight_io.
@@ -64,11 +65,13 @@ printf 'h_scale = 1\nv_scale = 1\nsun_dir = [3e38, 0, 1]\nfog_density = 3.4e38\n
 status=0
 for h in "${harnesses[@]}"; do
   corpus="$build/corpus/$h"
-  mkdir -p "$corpus"
+  mkdir -p "$corpus" "$seeds/$h"
+  stored=()
+  [ -d "$root/fuzz/corpus/$h" ] && stored=("$root/fuzz/corpus/$h")
   echo "== $h for ${seconds}s"
   # The fuzzer writes crash-* reproducers into the build directory on failure.
   if ! (cd "$build" && "$build/fuzz/$h" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
-        -rss_limit_mb=2048 -print_final_stats=1 "$corpus" "$seeds/$h" 2>"$build/$h.log"); then
+        -rss_limit_mb=2048 -print_final_stats=1 "$corpus" "$seeds/$h" "${stored[@]}" 2>"$build/$h.log"); then
     tail -n 40 "$build/$h.log"
     echo "FAIL: $h crashed (reproducer in $build)"
     status=1
