@@ -99,7 +99,9 @@ void add_sim_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("sim", "Run the hovercraft physics alone (no GL) and print CSV "
                                               "step,x,z,y,velocity,heading after each 10 ms step");
     add_terrain_options(*sub, o->terrain);
-    sub->add_option("--steps", o->steps, "Number of 10 ms steps (decimal)")->required()->transform(decimal<long long>());
+    sub->add_option("--steps", o->steps, "Number of 10 ms steps (decimal)")
+        ->required()
+        ->transform(decimal<long long>());
     sub->add_option("--at", o->at, "Start X,Z in world units (default: the data set's start, else the centre)");
     sub->add_option("--heading", o->heading, "Start heading, degrees (0 south, 90 east)");
     sub->add_option("--press", o->presses,

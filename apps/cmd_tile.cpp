@@ -25,7 +25,8 @@ void add_tile_command(CLI::App& app) {
     cmd->add_option("-o,--output", args->out, "output folder (created; a re-run resumes an interrupted tiling)")->required();
     cmd->add_option("--tile-size", args->tile_size, "samples per tile side, 2^k+1 (default 257)")
         ->transform(decimal<int>());
-    cmd->callback([args] {
+    cmd->callback([args, cmd] {
+        reject_empty_names(*cmd, {"-o", "--color"});
         const DataSet data = load_terrain(args->terrain);
         TileWriteOptions o;
         o.tile_size = args->tile_size;

@@ -94,8 +94,8 @@ TEST(SimCli, StepsAreDecimalAndNeverClamped) {
     EXPECT_EQ(line_count(r.out), 11);
     struct Case { const char* steps; const char* err; };
     for (const Case c :
-         {Case{"99999999999999999999",
-               "overflight: --steps: '99999999999999999999' is out of range (-9223372036854775808..9223372036854775807)\n"},
+         {Case{"99999999999999999999", "overflight: --steps: '99999999999999999999' is out of range "
+                                       "(-9223372036854775808..9223372036854775807)\n"},
           Case{"0x10", "overflight: --steps: '0x10' is not a whole decimal number\n"},
           Case{"1e3", "overflight: --steps: '1e3' is not a whole decimal number\n"},
           Case{"' 5'", "overflight: --steps: ' 5' is not a whole decimal number\n"}}) {

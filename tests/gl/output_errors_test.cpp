@@ -183,7 +183,8 @@ TEST(RenderOutput, EmptyAndMissingNamesAreOneLine) {
     ScratchDir dir;
     struct Case { std::string args, err; };
     for (const Case& c : {Case{"-o ''", "overflight: -o: the file name is empty\n"},
-                          Case{"-o " + quoted(dir / "a.png") + " --depth ''", "overflight: --depth: the file name is empty\n"},
+                          Case{"-o " + quoted(dir / "a.png") + " --depth ''",
+                               "overflight: --depth: the file name is empty\n"},
                           Case{"-o " + quoted(dir / "no/a.png"),
                                "overflight: " + dir / "no/a.png" + ": folder " + dir / "no" + " does not exist\n"},
                           Case{"-o " + quoted(dir / "a.png") + " --depth " + quoted(dir / "no/d.tif"),

@@ -1,18 +1,19 @@
-// Integer options of every command (apps/OptionValues.h): decimal only, no
-// silent clamping, no octal or hexadecimal, one line naming the option; and
-// command-line errors CLI11 finds (missing or unknown options) are one line
-// and exit 1 like every other error.
+// Option values of every command (apps/OptionValues.h): integers are decimal,
+// never silently clamped, never octal or hexadecimal; empty file names are
+// refused; each with one line naming the option. Command-line errors CLI11
+// finds (missing or unknown options) are one line and exit 1 as well.
 #include "TestSupport.h"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 using overflight::test::line_count;
 using overflight::test::run_overflight;
 using overflight::test::ScratchDir;
 
-TEST(IntegerOptions, EveryIntegerOptionRefusesWhatIsNotADecimalInRange) {
+TEST(OptionValues, EveryIntegerOptionRefusesWhatIsNotADecimalInRange) {
     ScratchDir dir;
     const std::string out = dir / "o";
     struct Case { std::string command, option, type_range; };
@@ -42,7 +43,7 @@ TEST(IntegerOptions, EveryIntegerOptionRefusesWhatIsNotADecimalInRange) {
     EXPECT_FALSE(std::filesystem::exists(out + ".png"));
 }
 
-TEST(IntegerOptions, LeadingZerosAreDecimal) {
+TEST(OptionValues, LeadingZerosAreDecimal) {
     ScratchDir dir;
     // 017 tiles of 17 samples (octal would be 15, not 2^k+1, and refused).
     const auto r = run_overflight("tile demo --demo-size 033 --tile-size 017 -o '" + (dir / "t") + "'");
@@ -50,12 +51,14 @@ TEST(IntegerOptions, LeadingZerosAreDecimal) {
     EXPECT_NE(r.out.find("2x2 tiles of 17 samples"), std::string::npos) << r.out;
 }
 
-TEST(IntegerOptions, CommandLineErrorsAreOneLineAndExitOne) {
+TEST(OptionValues, CommandLineErrorsAreOneLineAndExitOne) {
     struct Case { const char* args; const char* err; };
     for (const Case c : {Case{"sim demo", "overflight: --steps is required\n"},
                          Case{"sim demo --steps", "overflight: --steps: 1 required INT missing\n"},
-                         Case{"sim demo --steps 5 --warp 3", "overflight: The following arguments were not expected: 3 --warp\n"},
-                         Case{"", "overflight: A subcommand is required\n"}}) {
+                         Case{"sim demo --steps 5 --warp 3",
+                              "overflight: The following arguments were not expected: 3 --warp\n"},
+                         Case{"", "overflight: A subcommand is required\n"},
+                         Case{"tile demo --demo-size 33 -o ''", "overflight: -o: the file name is empty\n"}}) {
         SCOPED_TRACE(c.args);
         const auto r = run_overflight(c.args);
         EXPECT_EQ(r.exit_code, 1);
