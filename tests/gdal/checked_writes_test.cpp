@@ -16,38 +16,35 @@
 #include <fstream>
 #include <functional>
 #include <set>
-#include <sstream>
 
 using namespace overflight;
+using overflight::test::file_names_in;
+using overflight::test::read_file_text;
 using overflight::test::ScratchDir;
 
 namespace {
 
-// An image whose PNG does not compress to almost nothing.
-ColorImage noisy_image(int w, int h) {
-    ColorImage img;
-    img.width = w;
-    img.height = h;
-    img.pixels.resize(std::size_t(w) * std::size_t(h));
+// Pictures that do not compress to almost nothing: each pixel from a linear
+// congruential generator (Numerical Recipes' constants).
+template <class T, class Make>
+Image2D<T> noise(int w, int h, Make make) {
+    Image2D<T> img(w, h);
     std::uint32_t s = 12345;
-    for (Rgb8& p : img.pixels) {
+    for (T& p : img.pixels) {
         s = s * 1664525u + 1013904223u;
-        p = Rgb8{std::uint8_t(s >> 24), std::uint8_t(s >> 16), std::uint8_t(s >> 8)};
+        p = make(s);
     }
     return img;
 }
 
+ColorImage noisy_image(int w, int h) {
+    return noise<Rgb8>(w, h, [](std::uint32_t s) {
+        return Rgb8{std::uint8_t(s >> 24), std::uint8_t(s >> 16), std::uint8_t(s >> 8)};
+    });
+}
+
 DepthImage noisy_depth(int w, int h) {
-    DepthImage d;
-    d.width = w;
-    d.height = h;
-    d.pixels.resize(std::size_t(w) * std::size_t(h));
-    std::uint32_t s = 777;
-    for (float& v : d.pixels) {
-        s = s * 1664525u + 1013904223u;
-        v = float(s >> 8) / float(1u << 24);
-    }
-    return d;
+    return noise<float>(w, h, [](std::uint32_t s) { return float(s >> 8) / float(1u << 24); });
 }
 
 FlightRecord long_record(int frames) {
@@ -66,19 +63,6 @@ FlightRecord long_record(int frames) {
     return r;
 }
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-std::set<std::string> names_in(const std::filesystem::path& dir) {
-    std::set<std::string> names;
-    for (const auto& e : std::filesystem::directory_iterator(dir)) names.insert(e.path().filename().string());
-    return names;
-}
-
 // `write` onto the full file system `fs` over an existing file `name`: throws
 // Error(path, "cannot write: no space left on device"), the previous content
 // stays, and no other file appears.
@@ -89,7 +73,7 @@ void expect_full_disk_error(const test::SmallFilesystem& fs, const std::string& 
         std::ofstream(path) << "previous";
     }
     fs.fill();
-    const std::set<std::string> before = names_in(fs.path());
+    const std::set<std::string> before = file_names_in(fs.path());
     try {
         write(path);
         ADD_FAILURE() << "no error for " << path;
@@ -97,8 +81,8 @@ void expect_full_disk_error(const test::SmallFilesystem& fs, const std::string& 
         EXPECT_EQ(e.subject(), path);
         EXPECT_EQ(e.problem(), "cannot write: no space left on device");
     }
-    EXPECT_EQ(read_text(path), "previous");
-    EXPECT_EQ(names_in(fs.path()), before);
+    EXPECT_EQ(read_file_text(path), "previous");
+    EXPECT_EQ(file_names_in(fs.path()), before);
     fs.free_space();
 }
 
@@ -110,7 +94,7 @@ TEST(CheckedWrites, PngOnAFullDiskFailsAndKeepsThePreviousFile) {
     expect_full_disk_error(fs, "out.png", [&](const std::string& p) { write_png(p, img); });
     // With room again the same call writes a complete PNG (IEND last).
     write_png(fs / "out.png", img);
-    const std::string png = read_text(fs / "out.png");
+    const std::string png = read_file_text(fs / "out.png");
     ASSERT_GT(png.size(), 64u * 64u * 3u / 2u);
     EXPECT_EQ(png.substr(png.size() - 8, 4), "IEND");
 }
@@ -141,7 +125,7 @@ TEST(CheckedWrites, MissingFolderNamesTheFile) {
         EXPECT_EQ(e.subject(), path);
         EXPECT_NE(e.problem().find("does not exist"), std::string::npos) << e.problem();
     }
-    EXPECT_TRUE(names_in(dir.path).empty());
+    EXPECT_TRUE(file_names_in(dir.path).empty());
 }
 
 TEST(CheckedWrites, ErrnoTextIsALowercasePhrase) {

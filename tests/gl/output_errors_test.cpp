@@ -15,10 +15,11 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <sstream>
 
 using namespace overflight;
+using overflight::test::file_names_in;
 using overflight::test::line_count;
+using overflight::test::read_file_text;
 using overflight::test::run_overflight;
 using overflight::test::ScratchDir;
 
@@ -29,19 +30,6 @@ std::string quoted(const std::string& s) {
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
-}
-
-std::set<std::string> names_in(const std::filesystem::path& dir) {
-    std::set<std::string> names;
-    for (const auto& e : std::filesystem::directory_iterator(dir)) names.insert(e.path().filename().string());
-    return names;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 // A short recorded flight over the 65-sample demo island: the camera above
@@ -84,13 +72,15 @@ TEST(ReplayOutput, HostileNamesReachFfmpegVerbatim) {
     EXPECT_EQ(line_count(r.out), 2) << r.out; // the stats header and one method
     EXPECT_FALSE(std::filesystem::exists(dir / "pwned"));
     EXPECT_FALSE(std::filesystem::exists("pwned"));
-    EXPECT_EQ(names_in(frames), (std::set<std::string>{"frame_00000.png", "frame_00001.png", "frame_00002.png"}));
+    EXPECT_EQ(file_names_in(frames),
+              (std::set<std::string>{"frame_00000.png", "frame_00001.png", "frame_00002.png"}));
     // An MP4 (its first box is "ftyp") and no temporary beside it.
-    const std::string mp4 = read_text(video);
+    const std::string mp4 = read_file_text(video);
     ASSERT_GT(mp4.size(), 8u);
     EXPECT_EQ(mp4.substr(4, 4), "ftyp");
-    EXPECT_EQ(names_in(dir.path), (std::set<std::string>{"flight.csv", std::filesystem::path(frames).filename(),
-                                                         std::filesystem::path(video).filename()}));
+    EXPECT_EQ(file_names_in(dir.path),
+              (std::set<std::string>{"flight.csv", std::filesystem::path(frames).filename(),
+                                     std::filesystem::path(video).filename()}));
 }
 
 TEST(ReplayOutput, BadOutputsFailBeforeAnyFrame) {
@@ -110,7 +100,7 @@ TEST(ReplayOutput, BadOutputsFailBeforeAnyFrame) {
         EXPECT_EQ(r.exit_code, 1);
         EXPECT_EQ(r.err, c.err);
         EXPECT_TRUE(r.out.empty()) << r.out;
-        EXPECT_EQ(names_in(dir.path), std::set<std::string>{"flight.csv"}); // no frames folder
+        EXPECT_EQ(file_names_in(dir.path), std::set<std::string>{"flight.csv"}); // no frames folder
     }
 }
 
@@ -126,7 +116,7 @@ TEST(ReplayOutput, MissingFfmpegIsOneLine) {
     ::setenv("PATH", saved.c_str(), 1);
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "overflight: --video: ffmpeg is not installed (not found on PATH)\n");
-    EXPECT_EQ(names_in(dir.path), std::set<std::string>{"flight.csv"});
+    EXPECT_EQ(file_names_in(dir.path), std::set<std::string>{"flight.csv"});
 }
 
 TEST(ReplayOutput, ACameraTheRenderersRefuseNamesFileAndLine) {
@@ -138,7 +128,7 @@ TEST(ReplayOutput, ACameraTheRenderersRefuseNamesFileAndLine) {
     const auto r = run_overflight(kReplay + quoted(csv) + " --out " + quoted(dir / "frames"));
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "overflight: " + csv + ": line 3: pitch 90.000000 is outside (-89, 89) degrees\n");
-    EXPECT_EQ(names_in(dir.path), std::set<std::string>{"flight.csv"});
+    EXPECT_EQ(file_names_in(dir.path), std::set<std::string>{"flight.csv"});
 }
 
 TEST(ReplayOutput, FramesOntoAFullDiskLeaveNothing) {
@@ -153,7 +143,7 @@ TEST(ReplayOutput, FramesOntoAFullDiskLeaveNothing) {
     EXPECT_NE(r.err.find(".png: cannot write: no space left on device\n"), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
     // The frames written before the disk filled are gone, and so is the folder.
-    EXPECT_EQ(names_in(fs.path()), (std::set<std::string>{"filler", "flight.csv"}));
+    EXPECT_EQ(file_names_in(fs.path()), (std::set<std::string>{"filler", "flight.csv"}));
 }
 
 TEST(RenderOutput, FullDiskKeepsThePreviousPictureAndDepth) {
@@ -168,15 +158,15 @@ TEST(RenderOutput, FullDiskKeepsThePreviousPictureAndDepth) {
     r = run_overflight(kRender + "-o " + quoted(png) + " --depth " + quoted(tif));
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "overflight: " + tif + ": cannot write: no space left on device\n");
-    EXPECT_EQ(read_text(png), "previous png");
-    EXPECT_EQ(read_text(tif), "previous tif");
-    EXPECT_EQ(names_in(fs.path()), (std::set<std::string>{"filler", "out.png", "depth.tif"}));
+    EXPECT_EQ(read_file_text(png), "previous png");
+    EXPECT_EQ(read_file_text(tif), "previous tif");
+    EXPECT_EQ(file_names_in(fs.path()), (std::set<std::string>{"filler", "out.png", "depth.tif"}));
     // With room again both are written.
     fs.free_space();
     r = run_overflight(kRender + "-o " + quoted(png) + " --depth " + quoted(tif));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(read_text(png).substr(1, 3), "PNG");
-    EXPECT_EQ(read_text(tif).substr(0, 2), "II");
+    EXPECT_EQ(read_file_text(png).substr(1, 3), "PNG");
+    EXPECT_EQ(read_file_text(tif).substr(0, 2), "II");
 }
 
 TEST(RenderOutput, EmptyAndMissingNamesAreOneLine) {
@@ -193,6 +183,6 @@ TEST(RenderOutput, EmptyAndMissingNamesAreOneLine) {
         const auto r = run_overflight(kRender + c.args);
         EXPECT_EQ(r.exit_code, 1);
         EXPECT_EQ(r.err, c.err);
-        EXPECT_TRUE(names_in(dir.path).empty());
+        EXPECT_TRUE(file_names_in(dir.path).empty());
     }
 }
