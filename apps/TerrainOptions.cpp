@@ -1,6 +1,7 @@
 #include "TerrainOptions.h"
 
 #include "Loading.h"
+#include "OptionValues.h"
 #include "core/Error.h"
 #include "io/TileDirectory.h"
 
@@ -15,6 +16,7 @@ void add_terrain_options(CLI::App& cmd, TerrainArgs& args) {
     cmd.add_option("--color", args.load.color_path,
                    "color raster for a GDAL DEM (orthophoto, Landsat bands 3,2,1, ...), resampled onto the DEM grid");
     cmd.add_option("--demo-size", args.load.demo_size, "samples per side of the demo island (2^n+1, 33..16385)")
+        ->transform(decimal<int>())
         ->capture_default_str();
 }
 

@@ -6,6 +6,7 @@
 // (seed 003), and Zamri's accuracy of the LOD meshes against the full mesh.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "OptionValues.h"
 #include "RenderSession.h"
 #include "RoamBench.h"
 #include "TerrainOptions.h"
@@ -236,10 +237,11 @@ void add_bench_command(CLI::App& app) {
     add_method_options(*cmd, args->methods);
     cmd->add_option("--frames", args->frames,
                     "timed frames per method after one warm-up frame (a method slower than 15 s in all stops at 3)")
+        ->transform(decimal<int>())
         ->capture_default_str();
     cmd->add_option("--methods", args->method_names, "comma-separated methods (default: all but raymarch; known: " +
                                                    terrain_method_names() + ")");
-    cmd->add_option("--threads", args->threads, "worker threads (default: all cores)");
+    cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->transform(decimal<int>());
     cmd->add_flag("--json", args->json, "print one JSON object {\"runs\": [...]}");
     cmd->add_flag("--markdown", args->markdown, "print Markdown tables (the default without --json)");
     cmd->callback([args] {

@@ -15,21 +15,24 @@
 //   method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step
 // the last column as "step:ms;step:ms;..." (mean over the timed frames).
 #include "Commands.h"
+#include "OptionValues.h"
 #include "RenderSession.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "gl/FlightWindow.h"
+#include "io/Files.h"
 #include "io/FlightRecordFile.h"
 #include "io/ImageWriters.h"
 #include "io/SceneFile.h"
+#include "io/Subprocess.h"
 #include "io/TileDirectory.h"
 #include "sim/KeyScript.h"
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,39 +72,73 @@ std::string frame_name(long long i) {
     return buf;
 }
 
-// Encodes DIR/frame_%05d.png into `video` with ffmpeg, through a temporary
-// name so a failed encode leaves nothing behind.
-void encode_video(const std::string& dir, const std::string& video) {
-    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
-        throw Error("--video", "ffmpeg is not installed (the PNG frames are in " + dir + ")");
-    const std::string temp = video + ".partial";
-    const std::string cmd = "ffmpeg -loglevel error -y -framerate 60 -i '" + dir + "/frame_%05d.png' " +
-                            "-pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -f mp4 '" + temp + "'";
-    if (std::system(cmd.c_str()) != 0) {
-        std::filesystem::remove(temp);
-        throw Error(video, "ffmpeg failed to encode the frames");
-    }
-    std::filesystem::rename(temp, video);
+// Encodes DIR/frame_%05d.png into `video` with `ffmpeg`, run without a shell
+// (io/Subprocess.h), through a temporary name so a failed encode leaves
+// nothing behind. ffmpeg reads '%' in the input name as its frame-number
+// pattern ("%%" is a literal '%') and "PROTOCOL:" at the start of a name as a
+// protocol, so the folder's '%' are doubled and both names say "file:".
+void encode_video(const std::string& ffmpeg, const std::string& dir, const std::string& video) {
+    std::string pattern;
+    for (char c : dir) pattern += c == '%' ? std::string("%%") : std::string(1, c);
+    pattern += "/frame_%05d.png";
+    write_atomically(video, [&](const std::string& temp) {
+        const ProcessResult r = run_program(ffmpeg,
+                                            {"-nostdin", "-loglevel", "error", "-y", "-framerate", "60", "-i",
+                                             "file:" + pattern, "-pix_fmt", "yuv420p", "-vf",
+                                             "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f", "mp4", "file:" + temp},
+                                            video);
+        if (!r.succeeded()) throw Error(video, "ffmpeg could not encode the frames (" + r.describe() + ")");
+    });
 }
 
 void run_replay(const FlyOptions& o, const DataSet& data, const MethodContext& methods) {
+    namespace fs = std::filesystem;
     if (o.out.empty()) throw Error("--out", "--replay needs --out DIR for the frames");
     int w = 0, h = 0;
     parse_size(o.size, w, h);
+    // Everything that can be checked is checked before the first frame: the
+    // record (every line, cameras included), the folders of the other
+    // outputs and ffmpeg; a bad input then leaves no folder and no frame.
     const FlightRecord record = read_flight_record(o.replay);
-    std::filesystem::create_directories(o.out);
-    long long index = 0;
-    FlightRecord rendered;
-    const gl::FlightMethodStats stats = gl::render_flight_record(
-        data, record, o.frames, *find_terrain_method(o.method), methods, w, h, o.fov,
-        [&](const ColorImage& image, long long) {
-            write_png((std::filesystem::path(o.out) / frame_name(index)).string(), image);
-            rendered.frames.push_back(record.frames[std::size_t(index)]);
-            ++index;
-        });
-    // --record with --replay writes the camera path that was rendered.
-    if (!o.record.empty()) write_flight_record(o.record, rendered);
-    if (!o.video.empty()) encode_video(o.out, o.video);
+    std::string ffmpeg;
+    if (!o.video.empty()) {
+        check_output_folder(o.video);
+        const std::optional<std::string> found = find_program("ffmpeg");
+        if (!found) throw Error("--video", "ffmpeg is not installed (not found on PATH)");
+        ffmpeg = *found;
+    }
+    if (!o.record.empty()) check_output_folder(o.record);
+    std::error_code ec;
+    const bool created = fs::create_directories(o.out, ec);
+    if (ec) throw Error(o.out, "cannot create the folder: " + errno_text(ec.value()));
+
+    // What this run wrote, removed again if it fails: a replay either
+    // completes or leaves nothing of itself.
+    std::vector<std::string> written;
+    gl::FlightMethodStats stats;
+    try {
+        long long index = 0;
+        FlightRecord rendered;
+        stats = gl::render_flight_record(
+            data, record, o.frames, *find_terrain_method(o.method), methods, w, h, o.fov,
+            [&](const ColorImage& image, long long) {
+                const std::string path = (fs::path(o.out) / frame_name(index)).string();
+                write_png(path, image);
+                written.push_back(path);
+                rendered.frames.push_back(record.frames[std::size_t(index)]);
+                ++index;
+            });
+        if (!o.video.empty()) {
+            encode_video(ffmpeg, o.out, o.video);
+            written.push_back(o.video);
+        }
+        // --record with --replay writes the camera path that was rendered.
+        if (!o.record.empty()) write_flight_record(o.record, rendered);
+    } catch (...) {
+        for (const std::string& path : written) fs::remove(path, ec);
+        if (created) fs::remove(o.out, ec); // only if empty: never someone else's files
+        throw;
+    }
     print_stats({stats});
 }
 
@@ -172,7 +209,8 @@ void add_fly_command(CLI::App& app) {
     sub->add_option("--replay", o->replay, "Render a recorded flight headless instead of flying");
     sub->add_option("--out", o->out, "Folder for the replayed frames (frame_00000.png, ...)");
     sub->add_option("--video", o->video, "With --replay: also encode the frames to this MP4 (needs ffmpeg)");
-    sub->add_option("--frames", o->frames, "Unattended: run exactly N frames (replay: at most N)");
+    sub->add_option("--frames", o->frames, "Unattended: run exactly N frames (replay: at most N)")
+        ->transform(decimal<long long>());
     sub->add_option("--press", o->presses, "KEY:FROM-TO holds KEY during frames FROM..TO-1 (keys: accelerate, brake, "
                                            "left, right, fog, lighting, wireframe, detail-up, detail-down, "
                                            "next-method, screenshot, hud, quit)")
@@ -182,10 +220,14 @@ void add_fly_command(CLI::App& app) {
     sub->add_option("--fov", o->fov, "Horizontal field of view, degrees");
     sub->add_option("--cache-mib", o->cache_mib,
                     "quadtree over a tile directory: memory bound of the tile cache in MiB")
+        ->transform(decimal<int>())
         ->capture_default_str();
     sub->add_flag("--no-hud", o->no_hud, "Start with the HUD hidden (H toggles)");
     sub->add_flag("--hidden", o->hidden, "Do not show the window (unattended runs)");
-    sub->callback([o] { run_fly(*o); });
+    sub->callback([o, sub] {
+        reject_empty_names(*sub, {"--scene", "--record", "--replay", "--out", "--video", "--screenshot"});
+        run_fly(*o);
+    });
 }
 
 } // namespace overflight::app

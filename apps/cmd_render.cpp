@@ -4,9 +4,12 @@
 // depth TIFF), with timings and counts as one JSON object on stdout.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "OptionValues.h"
 #include "RenderSession.h"
+#include "StandardOutput.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
+#include "io/Files.h"
 #include "io/ImageWriters.h"
 #include "io/TileDirectory.h"
 
@@ -39,7 +42,11 @@ void add_render_command(CLI::App& app) {
     add_method_options(*cmd, args->methods);
     cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
-    cmd->callback([args] {
+    cmd->callback([args, cmd] {
+        reject_empty_names(*cmd, {"-o", "--depth", "--scene", "--color"});
+        // A bad output name is refused before the work, not after it.
+        check_output_folder(args->out);
+        if (!args->depth.empty()) check_output_folder(args->depth);
         const MethodEntry* row = find_terrain_method(args->method);
         if (!row) throw Error("--method", "unknown method '" + args->method + "' (known: " + terrain_method_names() + ")");
         auto t0 = std::chrono::steady_clock::now();
@@ -56,14 +63,14 @@ void add_render_command(CLI::App& app) {
         session.render(*row, *method, camera, !args->depth.empty(), view);
         const double ms_render = ms_since(t0);
         t0 = std::chrono::steady_clock::now();
-        write_png(args->out, *view.color);
-        if (!args->depth.empty()) {
-            try {
-                write_depth_tiff(args->depth, *view.depth);
-            } catch (...) {
-                std::remove(args->out.c_str()); // no half-written output
-                throw;
-            }
+        // The depth first: if it fails, -o has not been touched; if the PNG
+        // fails, the new depth goes too (no half of a result left behind).
+        if (!args->depth.empty()) write_depth_tiff(args->depth, *view.depth);
+        try {
+            write_png(args->out, *view.color);
+        } catch (...) {
+            if (!args->depth.empty()) std::remove(args->depth.c_str());
+            throw;
         }
         const double ms_write = ms_since(t0);
         if (args->stats) {
@@ -75,8 +82,7 @@ void add_render_command(CLI::App& app) {
             stats["ms"]["terrain_load"] = ms_load; // quadtree has its own "load" (tiles)
             stats["ms"]["render"] = ms_render;
             stats["ms"]["write"] = ms_write;
-            const std::string text = stats.dump() + "\n";
-            std::fwrite(text.data(), 1, text.size(), stdout);
+            write_stdout(stats.dump() + "\n");
         }
     });
 }

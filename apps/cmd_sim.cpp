@@ -4,6 +4,8 @@
 // is the state after step k (k = 0 .. N-1), the step that saw the keys held
 // "during step k" of --press.
 #include "Commands.h"
+#include "OptionValues.h"
+#include "StandardOutput.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "sim/Hovercraft.h"
@@ -72,7 +74,8 @@ void run_sim(const SimOptions& o) {
     Hovercraft hc(t, x, z, heading, params);
     const KeyScript script(std::move(presses));
 
-    // Rows are formatted into one reused buffer and written in blocks.
+    // Rows are formatted into one reused buffer and written in blocks, each
+    // write checked: a full disk or a closed stdout stops the run at once.
     std::string out = "step,x,z,y,velocity,heading\n";
     char line[192];
     for (long long k = 0; k < o.steps; ++k) {
@@ -82,12 +85,11 @@ void run_sim(const SimOptions& o) {
                                     s.velocity, s.heading);
         out.append(line, std::size_t(n));
         if (out.size() > (1u << 16)) {
-            std::fwrite(out.data(), 1, out.size(), stdout);
+            write_stdout(out);
             out.clear();
         }
     }
-    std::fwrite(out.data(), 1, out.size(), stdout);
-    if (std::fflush(stdout) != 0) throw Error("stdout", "write failed");
+    write_stdout(out);
 }
 
 } // namespace
@@ -97,7 +99,9 @@ void add_sim_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("sim", "Run the hovercraft physics alone (no GL) and print CSV "
                                               "step,x,z,y,velocity,heading after each 10 ms step");
     add_terrain_options(*sub, o->terrain);
-    sub->add_option("--steps", o->steps, "Number of 10 ms steps")->required();
+    sub->add_option("--steps", o->steps, "Number of 10 ms steps (decimal)")
+        ->required()
+        ->transform(decimal<long long>());
     sub->add_option("--at", o->at, "Start X,Z in world units (default: the data set's start, else the centre)");
     sub->add_option("--heading", o->heading, "Start heading, degrees (0 south, 90 east)");
     sub->add_option("--press", o->presses,

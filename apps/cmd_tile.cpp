@@ -2,6 +2,7 @@
 // Zamri, "Data tiling"): overlapping tiles, one GeoTIFF per tile,
 // DIR/index.json. The format is described in io/TileDirectory.h.
 #include "Commands.h"
+#include "OptionValues.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
 #include "io/TileDirectory.h"
@@ -34,8 +35,10 @@ void add_tile_command(CLI::App& app) {
         "tile", "Cut a terrain into overlapping 2^k+1 tiles (16-bit GeoTIFF heights + RGB GeoTIFF colors) and index.json");
     add_terrain_options(*cmd, args->terrain);
     cmd->add_option("-o,--output", args->out, "output folder (created; a re-run resumes an interrupted tiling)")->required();
-    cmd->add_option("--tile-size", args->tile_size, "samples per tile side, 2^k+1 (default 257)");
-    cmd->callback([args] {
+    cmd->add_option("--tile-size", args->tile_size, "samples per tile side, 2^k+1 (default 257)")
+        ->transform(decimal<int>());
+    cmd->callback([args, cmd] {
+        reject_empty_names(*cmd, {"-o", "--color"});
         const DataSet data = load_terrain(args->terrain);
         TileWriteOptions o;
         o.tile_size = args->tile_size;

@@ -2,6 +2,7 @@
 #include "Commands.h"
 #include "Loading.h"
 #include "OptionErrors.h"
+#include "StandardOutput.h"
 #include "core/Error.h"
 
 #include <cstdio>
@@ -21,8 +22,14 @@ int main(int argc, char** argv) {
     overflight::app::add_tile_command(app);
     try {
         app.parse(argc, argv);
+        overflight::app::finish_stdout();
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version print as CLI11 formats them; a bad command line
+        // is one line and exit 1 like every other error of the user's
+        // ("overflight: --steps: '1x' is not a whole decimal number").
+        if (e.get_exit_code() == 0) return app.exit(e);
+        std::fprintf(stderr, "overflight: %s\n", e.what());
+        return 1;
     } catch (const overflight::Error& e) {
         std::fprintf(stderr, "overflight: %s\n", overflight::app::in_option_terms(e).what());
         return 1;

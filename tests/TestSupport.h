@@ -6,6 +6,9 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
@@ -63,6 +66,21 @@ inline int line_count(const std::string& s) {
     int n = 0;
     for (char c : s) n += c == '\n';
     return n + (!s.empty() && s.back() != '\n');
+}
+
+// The names of the entries of a folder (not recursive).
+inline std::set<std::string> file_names_in(const std::filesystem::path& dir) {
+    std::set<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) names.insert(e.path().filename().string());
+    return names;
+}
+
+// The whole content of a file ("" when it cannot be read).
+inline std::string read_file_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
 }
 
 } // namespace overflight::test

@@ -42,12 +42,64 @@ std::vector<std::uint8_t> read_file_bytes(const std::string& path) {
     return bytes;
 }
 
+namespace {
+fs::path output_folder(const fs::path& target) {
+    return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+} // namespace
+
+void check_output_folder(const std::string& path) {
+    const fs::path folder = output_folder(path);
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) throw Error(path, "folder " + folder.string() + " does not exist");
+}
+
+std::string errno_text(int err) {
+    std::string text = std::strerror(err);
+    // "No space left on device" -> "no space left on device"; "I/O error" stays.
+    if (text.size() > 1 && std::isupper(static_cast<unsigned char>(text[0])) &&
+        std::islower(static_cast<unsigned char>(text[1])))
+        text[0] = char(std::tolower(static_cast<unsigned char>(text[0])));
+    return text;
+}
+
+CheckedFile::CheckedFile(const std::string& path, const std::string& subject)
+    : file_(std::fopen(path.c_str(), "wb")), subject_(subject) {
+    if (!file_) throw Error(subject_, "cannot create: " + errno_text(errno));
+}
+
+CheckedFile::~CheckedFile() {
+    if (file_) std::fclose(file_); // only after a failure: close() was not reached
+}
+
+void CheckedFile::write(const void* data, std::size_t size) {
+    if (error_ != 0 || size == 0) return;
+    if (std::fwrite(data, 1, size, file_) != size) error_ = errno != 0 ? errno : EIO;
+}
+
+void CheckedFile::close() {
+    std::FILE* f = file_;
+    file_ = nullptr;
+    if (error_ == 0 && std::fflush(f) != 0) error_ = errno;
+    if (error_ == 0 && ::fsync(::fileno(f)) != 0) error_ = errno;
+    if (std::fclose(f) != 0 && error_ == 0) error_ = errno;
+    if (error_ != 0) throw Error(subject_, "cannot write: " + errno_text(error_));
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(CheckedFile&)>& write) {
+    write_atomically(path, [&](const std::string& temp) {
+        CheckedFile file(temp, path);
+        write(file);
+        file.close();
+    });
+}
+
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
     static std::atomic<unsigned> counter{0};
     const fs::path target(path);
-    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    const fs::path folder = output_folder(target);
+    check_output_folder(path);
     std::error_code ec;
-    if (!fs::is_directory(folder, ec)) throw Error(path, "folder " + folder.string() + " does not exist");
     // Hidden, unique per process and call, in the destination folder so that
     // the final rename stays within one file system.
     const std::string temp = (folder / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) +
@@ -67,15 +119,7 @@ void write_atomically(const std::string& path, const std::function<void(const st
 }
 
 void write_file_atomically(const std::string& path, const void* data, std::size_t size) {
-    write_atomically(path, [&](const std::string& temp) {
-        FILE* f = std::fopen(temp.c_str(), "wb");
-        if (!f) throw Error(path, "cannot write: " + errno_text(errno));
-        errno = 0;
-        const bool written = std::fwrite(data, 1, size, f) == size && std::fflush(f) == 0;
-        const int write_errno = errno;
-        const bool closed = std::fclose(f) == 0;
-        if (!written || !closed) throw Error(path, "cannot write: " + errno_text(!written ? write_errno : errno));
-    });
+    write_file_atomically(path, [&](CheckedFile& file) { file.write(data, size); });
 }
 
 } // namespace overflight

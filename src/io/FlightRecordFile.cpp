@@ -3,7 +3,6 @@
 #include "core/Error.h"
 #include "io/Files.h"
 
-#include <cstdio>
 #include <string_view>
 
 namespace overflight {
@@ -16,13 +15,7 @@ FlightRecord read_flight_record(const std::string& path) {
 
 void write_flight_record(const std::string& path, const FlightRecord& record) {
     const std::string text = format_flight_record(record);
-    write_atomically(path, [&](const std::string& temp) {
-        std::FILE* f = std::fopen(temp.c_str(), "wb");
-        if (!f) throw Error(path, "cannot create the file");
-        const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-        const bool closed = std::fclose(f) == 0;
-        if (!written || !closed) throw Error(path, "write failed (disk full?)");
-    });
+    write_file_atomically(path, [&](CheckedFile& file) { file.write(text.data(), text.size()); });
 }
 
 } // namespace overflight

@@ -1,5 +1,6 @@
 #include "sim/FlightRecord.h"
 
+#include "core/Camera.h"
 #include "core/Error.h"
 
 #include <array>
@@ -114,6 +115,17 @@ FlightRecord parse_flight_record(std::string_view text, const std::string& sourc
             if (t != "0" && t != "1")
                 throw Error(source, where + key_name(Key(i)) + " must be 0 or 1, not '" + std::string(t) + "'");
             *keys[i] = t == "1";
+        }
+        // The camera must be one every renderer accepts, so that a replay
+        // fails here, naming the line, rather than in the middle of rendering.
+        Camera camera;
+        camera.eye = f.eye;
+        camera.heading = f.heading;
+        camera.pitch = f.pitch;
+        try {
+            camera.validate();
+        } catch (const Error& e) {
+            throw Error(source, where + e.problem());
         }
         if (!record.frames.empty() && f.frame <= record.frames.back().frame)
             throw Error(source, where + "frame " + std::to_string(f.frame) + " is not after frame " +

@@ -46,8 +46,9 @@ std::string format_flight_record(const FlightRecord& record);
 
 // Parses the text form. `source` names the file in errors: throws
 // Error(source, "line N: ...") for a wrong header, a wrong column count, a
-// number that does not parse or is not finite, a key column other than 0/1,
-// frames out of order, or no frames at all.
+// number that does not parse or is not finite, a camera the renderers refuse
+// (Camera::validate: |pitch| >= 89), a key column other than 0/1, frames out
+// of order, or no frames at all.
 FlightRecord parse_flight_record(std::string_view text, const std::string& source);
 
 } // namespace overflight

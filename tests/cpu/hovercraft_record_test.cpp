@@ -73,6 +73,7 @@ TEST(FlightRecord, BadInputNamesTheSourceAndLine) {
                           Case{header + "0,0,1,2,x,4,5,6,7,8,9,1,0,0,0\n", "eye_z 'x'"},
                           Case{header + "0,0,1,2,nan,4,5,6,7,8,9,1,0,0,0\n", "eye_z"},
                           Case{header + "0,0,1,2,3,4,5,6,7,8,9,2,0,0,0\n", "accelerate must be 0 or 1"},
+                          Case{header + "0,0,1,2,3,4,90,6,7,8,9,1,0,0,0\n", "line 2: pitch 90.000000 is outside"},
                           Case{header + "1,0,1,2,3,4,5,6,7,8,9,1,0,0,0\n1,0,1,2,3,4,5,6,7,8,9,1,0,0,0\n",
                                "line 3: frame 1 is not after"}}) {
         SCOPED_TRACE(c.text);

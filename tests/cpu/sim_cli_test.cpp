@@ -85,3 +85,37 @@ TEST(SimCli, BadInputIsOneLineNamingTheOption) {
         EXPECT_TRUE(r.out.empty()) << r.out;
     }
 }
+
+// Whole numbers are decimal: 010 is ten steps (CLI11 alone reads it as octal
+// 8), and a count too large for the step counter is refused rather than clamped.
+TEST(SimCli, StepsAreDecimalAndNeverClamped) {
+    const auto r = run_overflight("sim demo --demo-size 33 --steps 010");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(line_count(r.out), 11);
+    struct Case { const char* steps; const char* err; };
+    for (const Case c :
+         {Case{"99999999999999999999", "overflight: --steps: '99999999999999999999' is out of range "
+                                       "(-9223372036854775808..9223372036854775807)\n"},
+          Case{"0x10", "overflight: --steps: '0x10' is not a whole decimal number\n"},
+          Case{"1e3", "overflight: --steps: '1e3' is not a whole decimal number\n"},
+          Case{"' 5'", "overflight: --steps: ' 5' is not a whole decimal number\n"}}) {
+        SCOPED_TRACE(c.steps);
+        const auto bad = run_overflight(std::string("sim demo --demo-size 33 --steps ") + c.steps);
+        EXPECT_EQ(bad.exit_code, 1);
+        EXPECT_EQ(bad.err, c.err);
+        EXPECT_TRUE(bad.out.empty()) << bad.out;
+    }
+}
+
+// Output that cannot be written is an error, whether the device is full
+// (every write fails) or stdout is closed; the run stops at the first failure.
+TEST(SimCli, UnwritableStandardOutputIsAnError) {
+    const auto full = run_overflight("sim demo --demo-size 33 --steps 100000 >/dev/full");
+    EXPECT_EQ(full.exit_code, 1);
+    EXPECT_EQ(full.err, "overflight: stdout: cannot write: no space left on device\n");
+    const auto closed = run_overflight("sim demo --demo-size 33 --steps 5 >&-");
+    EXPECT_EQ(closed.exit_code, 1);
+    EXPECT_EQ(closed.err, "overflight: stdout: cannot write: bad file descriptor\n");
+    // The same command writing to a pipe succeeds: the failure is the output's.
+    EXPECT_EQ(run_overflight("sim demo --demo-size 33 --steps 5").exit_code, 0);
+}
