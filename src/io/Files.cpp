@@ -15,17 +15,6 @@ namespace overflight {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// strerror() as the tail of a one-line message: "no space left on device".
-std::string errno_text(int err) {
-    std::string s = std::strerror(err);
-    if (!s.empty()) s[0] = char(std::tolower(static_cast<unsigned char>(s[0])));
-    return s;
-}
-
-} // namespace
-
 std::vector<std::uint8_t> read_file_bytes(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw Error(path, "no such file");
