@@ -2,6 +2,7 @@
 // (`render --method`, `--stats` as one JSON object).
 #include "RenderSession.h"
 
+#include "OptionValues.h"
 #include "io/SceneFile.h"
 #include "io/TileDirectory.h"
 
@@ -39,11 +40,14 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                    "voxel: near the eye, where a cell spans more pixels, put slices closer than one cell so that a "
                    "step spans at most this many pixels (down to 1/8 cell); 0 = one cell everywhere as in the paper")
         ->capture_default_str();
-    cmd.add_option("--triangles", o.triangles, "roam: triangle budget per frame")->capture_default_str();
+    cmd.add_option("--triangles", o.triangles, "roam: triangle budget per frame")
+        ->transform(decimal<int>())
+        ->capture_default_str();
     cmd.add_option("--error", o.error_px, "quadtree: screen-space error target in pixels")->capture_default_str();
     cmd.add_option("--cache-mib", o.cache_mib,
                    "quadtree: memory bound of the tile cache in MiB (far tiles load reduced; a view that needs more "
                    "streams its tiles within the frame)")
+        ->transform(decimal<int>())
         ->capture_default_str();
 }
 

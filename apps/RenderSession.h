@@ -28,7 +28,7 @@ struct MethodOptions {
     double near_step = RaycastOptions{}.near_step_pixels; // --near-step (voxel)
     int triangles = MethodSettings::kDefaultTriangles;    // --triangles (roam)
     double error_px = MethodSettings::kDefaultErrorPx;    // --error (quadtree)
-    long long cache_mib = MethodSettings::kDefaultCacheMib; // --cache-mib (quadtree)
+    int cache_mib = MethodSettings::kDefaultCacheMib;      // --cache-mib (quadtree)
     std::string scene;                 // --scene FILE
 
     // Validated settings; throws Error in the methods' terms (OptionErrors.h).

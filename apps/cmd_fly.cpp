@@ -44,7 +44,7 @@ struct FlyOptions {
     TerrainArgs terrain;
     std::string scene, method = "mesh", record, replay, out, screenshot, video, size = "1280x720";
     long long frames = 0;
-    long long cache_mib = MethodSettings::kDefaultCacheMib;
+    int cache_mib = MethodSettings::kDefaultCacheMib;
     std::vector<std::string> presses;
     double fov = 60;
     bool no_hud = false, hidden = false;

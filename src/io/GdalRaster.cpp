@@ -366,19 +366,11 @@ void warn_about_bands(GDALDatasetH ds, TerrainInfo& info) {
             (ci == GCI_RedBand ? " (an RGB image? give heights as TERRAIN and the image as --color)" : ""));
 }
 
-DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::string& driver_name,
-                     const std::string& color_path) {
-    DataSet data;
-    TerrainInfo& info = data.info;
-    info.source = path;
-    info.kind = "gdal";
-    info.driver = driver_name;
-    warn_about_bands(src_ds, info);
-    Grid grid = grid_of(src_ds, path);
-    info.source_rows = grid.rows;
-    info.source_cols = grid.cols;
-
-    // Elevations to metres (band scale/offset, then the unit type).
+// Converts band 1's values in `grid` to metres (band scale/offset, then the
+// unit type) and marks no-data as kNoData. Returns the number of no-data
+// samples; `integral` tells whether every valid value is whole metres.
+long long heights_to_metres(Grid& grid, GDALDatasetH src_ds, const std::string& path, TerrainInfo& info,
+                            bool& integral) {
     GDALRasterBandH band = GDALGetRasterBand(src_ds, 1);
     int has_nodata = 0;
     const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
@@ -389,7 +381,7 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     const char* unit = GDALGetRasterUnitType(band);
     info.unit_to_metre = metres_per_unit(unit ? unit : "", info.vertical_units);
     long long voids = 0;
-    bool integral = true; // whole metres in the source: kept exact (v_scale = 1) when not resampled
+    integral = true; // whole metres in the source: kept exact (v_scale = 1) when not resampled
     for (std::size_t i = 0; i < grid.z.size(); ++i) {
         float& v = grid.z[i];
         const bool missing = !std::isfinite(v) || (has_nodata && (double(v) == nodata || float(nodata) == v));
@@ -408,10 +400,12 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
         v = float(metres);
         integral = integral && v == std::round(v);
     }
-    if (voids == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
-    info.metadata = metadata_of(src_ds, path, info.driver);
+    return voids;
+}
 
-    // Georeferencing: decide whether the grid must be warped to square metric cells.
+// Warps `grid` to square metric cells when its CRS is geographic or its cells
+// are rotated or not square (DESIGN sec. 4); returns the cell size in metres.
+double to_square_metric_cells(Grid& grid, GDALDatasetH src_ds, const std::string& path, TerrainInfo& info) {
     const bool real_gt = grid.georeferenced &&
                          !(grid.gt[0] == 0 && grid.gt[1] == 1 && grid.gt[2] == 0 && grid.gt[3] == 0 &&
                            grid.gt[4] == 0 && grid.gt[5] == 1);
@@ -462,9 +456,13 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
         }
         if (target && OSRIsProjected(target)) hs *= OSRGetLinearUnits(target, nullptr);
     }
-    if (const std::string problem = horizontal_scale_problem(grid.rows, grid.cols, hs); !problem.empty())
-        throw Error(path, "pixel size: " + problem);
+    return hs;
+}
 
+// Fills the no-data samples from their valid neighbours (the rest: the lowest
+// valid elevation, never a spike), recording what was done in `info`.
+void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long long source_voids,
+                     bool& integral) {
     long long missing = 0;
     for (float v : grid.z) missing += v == kNoData;
     if (missing == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
@@ -485,9 +483,33 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     info.nodata_filled = missing;
     if (missing > 0) {
         info.nodata_method = "inverse-distance interpolation from valid neighbours (GDALFillNodata); " +
-                             std::to_string(voids) + " no-data samples in the source";
+                             std::to_string(source_voids) + " no-data samples in the source";
         if (info.reprojected) info.nodata_method += ", the rest outside the source after reprojection";
     }
+}
+
+DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::string& driver_name,
+                     const std::string& color_path) {
+    DataSet data;
+    TerrainInfo& info = data.info;
+    info.source = path;
+    info.kind = "gdal";
+    info.driver = driver_name;
+    warn_about_bands(src_ds, info);
+    Grid grid = grid_of(src_ds, path);
+    info.source_rows = grid.rows;
+    info.source_cols = grid.cols;
+
+    bool integral = true;
+    const long long voids = heights_to_metres(grid, src_ds, path, info, integral);
+    if (voids == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
+    info.metadata = metadata_of(src_ds, path, info.driver);
+
+    const double hs = to_square_metric_cells(grid, src_ds, path, info);
+    if (const std::string problem = horizontal_scale_problem(grid.rows, grid.cols, hs); !problem.empty())
+        throw Error(path, "pixel size: " + problem);
+
+    fill_voids(grid, path, info, voids, integral);
 
     float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
     for (float v : grid.z) {
