@@ -28,7 +28,6 @@ public:
     float h_scale() const { return h_scale_; }
     float v_scale() const { return v_scale_; }
     float y_offset() const { return y_offset_; }
-    void set_vertical_mapping(float v_scale, float y_offset) { v_scale_ = v_scale; y_offset_ = y_offset; }
 
     // Raw samples, row-major, rows()*cols().
     std::vector<std::uint16_t>& heights() { return heights_; }

@@ -5,12 +5,6 @@
 
 namespace overflight::gl {
 
-double FlightSteps::total_ms() const {
-    double t = 0;
-    for (int i = 0; i < count; ++i) t += step[std::size_t(i)].ms;
-    return t;
-}
-
 FlightStepTimer::FlightStepTimer(Sink sink) : sink_(std::move(sink)) {
     for (Slot& s : slots_) glCreateQueries(GL_TIME_ELAPSED, FlightSteps::kMax, s.query.data());
 }

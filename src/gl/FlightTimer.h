@@ -32,7 +32,6 @@ struct FlightSteps {
     static constexpr int kMax = 8;
     std::array<FlightStep, kMax> step{};
     int count = 0;
-    double total_ms() const;
 };
 
 class FlightStepTimer final : public StepTimer {

@@ -21,7 +21,6 @@ public:
     // Draws with depth test on (Frame block must be bound). Returns triangles drawn.
     long long draw() const;
     long long triangle_count() const { return solids_.triangle_count(); }
-    std::size_t line_segment_count() const { return lines_.segment_count(); }
     // The pixels the objects can cover for `camera` (core screen_rect of their
     // bounds): where a composite needs the ray caster's depth.
     PixelRect screen_rect(const Camera& camera) const { return overflight::screen_rect(bounds_, camera); }

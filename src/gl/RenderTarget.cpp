@@ -181,9 +181,4 @@ void RenderTarget::read_depth(DepthImage& depth) const {
     copy_flipped(depth.pixels.data(), readback_.data(), height_, row);
 }
 
-void RenderTarget::blit_to_default() const {
-    glBlitNamedFramebuffer(fbo_.get(), 0, 0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
-                           GL_NEAREST);
-}
-
 } // namespace overflight::gl

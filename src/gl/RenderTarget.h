@@ -53,9 +53,6 @@ public:
     void read_color(ColorImage& color) const;
     void read_depth(DepthImage& depth) const;
 
-    // Copies this offscreen target's color to the default framebuffer (present).
-    void blit_to_default() const;
-
 private:
     RenderTarget() = default;
     int width_ = 0, height_ = 0;

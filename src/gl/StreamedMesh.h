@@ -40,7 +40,6 @@ public:
     // points[2k], points[2k+1] is segment k; one color per point.
     void upload(const std::vector<glm::vec3>& points, const std::vector<Rgb8>& colors);
     void draw() const;
-    std::size_t segment_count() const { return std::size_t(count_ / 2); }
 
 private:
     Buffer points_, colors_;

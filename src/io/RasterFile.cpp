@@ -1,4 +1,4 @@
-// Based on: DESIGN sec. 6 (`tile` writes 16-bit GeoTIFFs, `--depth` a float32 TIFF).
+// Based on: DESIGN sec. 6 (GeoTIFF rasters with georeferencing, as `tile` and `--depth` write them).
 #include "io/RasterFile.h"
 
 #include "core/Error.h"
@@ -11,10 +11,7 @@
 
 namespace overflight {
 
-namespace {
-
-template <typename T>
-void write_band(const std::string& path, const Image2D<T>& image, GDALDataType type, const RasterGeoreference& g) {
+void write_geotiff(const std::string& path, const Image2D<float>& image, const RasterGeoreference& g) {
     if (image.width < 1 || image.height < 1 || image.pixels.size() != std::size_t(image.width) * std::size_t(image.height))
         throw Error(path, "cannot write an empty or inconsistent raster");
     gdal::ensure_initialised();
@@ -31,7 +28,7 @@ void write_band(const std::string& path, const Image2D<T>& image, GDALDataType t
     write_atomically(path, [&](const std::string& temp) {
         const char* options[] = {"COMPRESS=DEFLATE", nullptr};
         CPLErrorReset();
-        gdal::Dataset ds(GDALCreate(GDALGetDriverByName("GTiff"), temp.c_str(), image.width, image.height, 1, type,
+        gdal::Dataset ds(GDALCreate(GDALGetDriverByName("GTiff"), temp.c_str(), image.width, image.height, 1, GDT_Float32,
                                     const_cast<char**>(options)));
         if (!ds) throw Error(path, "cannot create GeoTIFF: " + gdal::last_error("GDALCreate failed"));
         if (g.geotransform) GDALSetGeoTransform(ds.get(), const_cast<double*>(g.geotransform->data()));
@@ -43,22 +40,13 @@ void write_band(const std::string& path, const Image2D<T>& image, GDALDataType t
             GDALSetRasterScale(band, g.scale);
             GDALSetRasterOffset(band, g.offset);
         }
-        bool ok = GDALRasterIO(band, GF_Write, 0, 0, image.width, image.height, const_cast<T*>(image.pixels.data()),
-                               image.width, image.height, type, 0, 0) == CE_None;
+        float* pixels = const_cast<float*>(image.pixels.data());
+        bool ok = GDALRasterIO(band, GF_Write, 0, 0, image.width, image.height, pixels, image.width, image.height,
+                               GDT_Float32, 0, 0) == CE_None;
         GDALClose(ds.release());
         ok = ok && CPLGetLastErrorType() < CE_Failure;
         if (!ok) throw Error(path, "cannot write GeoTIFF: " + gdal::last_error("write failed"));
     });
-}
-
-} // namespace
-
-void write_geotiff(const std::string& path, const Image2D<float>& band, const RasterGeoreference& georef) {
-    write_band(path, band, GDT_Float32, georef);
-}
-
-void write_geotiff(const std::string& path, const Image2D<std::uint16_t>& band, const RasterGeoreference& georef) {
-    write_band(path, band, GDT_UInt16, georef);
 }
 
 Image2D<float> read_raster_band(const std::string& path, int band_index) {

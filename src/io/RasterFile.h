@@ -1,7 +1,7 @@
 #pragma once
 // Plain GeoTIFF writing and single-band reading through GDAL, for code outside
-// src/io that must not include GDAL: tile writers, and tests that build small
-// DEMs (feet, float, negative, no-data) or read back a depth TIFF.
+// src/io that must not include GDAL: tests that build small DEMs (feet, float,
+// negative, no-data) or read back a depth TIFF.
 #include "core/Image.h"
 
 #include <array>
@@ -18,10 +18,9 @@ struct RasterGeoreference {
     double scale = 1.0, offset = 0.0; // band scale/offset (value = raw * scale + offset)
 };
 
-// Single-band GeoTIFF (Float32, or UInt16 for the second overload), row 0 at
-// the top, written atomically (temporary name + rename). Throws Error(path, ...).
+// Single-band Float32 GeoTIFF, row 0 at the top, written atomically
+// (temporary name + rename). Throws Error(path, ...).
 void write_geotiff(const std::string& path, const Image2D<float>& band, const RasterGeoreference& georef = {});
-void write_geotiff(const std::string& path, const Image2D<std::uint16_t>& band, const RasterGeoreference& georef = {});
 
 // Band `band` (1-based) of any raster GDAL reads, as floats. Throws Error(path, ...).
 Image2D<float> read_raster_band(const std::string& path, int band = 1);

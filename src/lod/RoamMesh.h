@@ -148,8 +148,6 @@ public:
     std::span<const Vertex> vertices() const { return {vertices_.data(), vertex_count_}; }
     // First child of a split node i (the second is child(i) + 1).
     std::int32_t child(std::size_t i) const { return children_[i]; }
-    // True when node i is output: a leaf not wholly in the padding.
-    bool is_output(std::size_t i) const { return !(nodes_[i].flags() & (kSplit | kOutside)); }
 
 private:
     struct Rc {

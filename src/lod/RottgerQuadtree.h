@@ -132,9 +132,6 @@ public:
     double min_resolution() const { return C_; }
     // Propagated d2 of the node centred at (row, col) (0 where no node is centred).
     float d2(int row, int col) const { return d2_[idx(row, col)]; }
-    // Raw height range of the samples of the node centred at (row, col).
-    std::uint16_t raw_min(int row, int col) const { return lo_[idx(row, col)]; }
-    std::uint16_t raw_max(int row, int col) const { return hi_[idx(row, col)]; }
 
     // Neighbouring patches, or nullptr where there is none or it is not drawn
     // this frame (the patch then keeps its own edge midpoints there, as at
