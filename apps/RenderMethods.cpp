@@ -101,7 +101,7 @@ class VoxelRenderer : public ViewRenderer {
 public:
     enum class Composite { None, Present, Objects };
     VoxelRenderer(RenderSession& s, Composite composite)
-        : session_(s), fh_(s.data().terrain, s.data().environment), options_(s.settings().raycast()),
+        : session_(s), fh_(s.data().terrain), options_(s.settings().raycast()),
           composite_(composite) {
         if (composite_ != Composite::None) session_.gl();
     }
@@ -109,7 +109,7 @@ public:
         RaycastStats s;
         ColorImage& cast_color = composite_ == Composite::None ? color : cast_color_;
         DepthImage& cast_depth = composite_ == Composite::None ? depth : cast_depth_;
-        fh_.render(camera, options_, cast_color, cast_depth, &s);
+        fh_.render(camera, session_.data().environment, options_, cast_color, cast_depth, &s);
         stats = raycast_stats_json(s);
         stats["surface"] = to_string(options_.surface);
         stats["lod"] = options_.lod;

@@ -24,15 +24,14 @@ namespace {
 
 class VoxelFlightMethod final : public FlightMethod {
 public:
-    explicit VoxelFlightMethod(const DataSet& data) : env_(data.environment), caster_(data.terrain, env_) {}
+    explicit VoxelFlightMethod(const DataSet& data) : caster_(data.terrain) {}
     const char* name() const override { return "voxel"; }
     bool covers_frame() const override { return true; }
 
     long long draw(const FlightView& view) override {
         const Camera& cam = view.camera;
-        env_ = view.environment; // the caster reads it every frame (fog toggle)
         auto t0 = std::chrono::steady_clock::now();
-        caster_.render(cam, options_, color_, depth_);
+        caster_.render(cam, view.environment, options_, color_, depth_); // fog toggle: per frame
         view.timer.cpu_step_since("raycast", t0);
 
         t0 = std::chrono::steady_clock::now();
@@ -49,7 +48,6 @@ public:
     }
 
 private:
-    Environment env_; // before caster_, which keeps a reference to it
     FloatingHorizon caster_;
     RaycastOptions options_; // blocks surface, exact: the papers' voxels
     ColorImage color_;
