@@ -2,8 +2,8 @@
 // runs of slices with the max-height pyramid (SliceRunBound): a run is skipped
 // only when every sample in it stays below the horizon, where Algorithm 1
 // (Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of a
-// Terrain with Objects", SIBGRAPI 1997) paints nothing. The cast compiled for x86-64-v3
-// (CastKernel): the same operations as the portable one.
+// Terrain with Objects", SIBGRAPI 1997) paints nothing. The cast compiled for
+// x86-64-v3 (CastKernel): the same operations as the portable one.
 #include "TestSupport.h"
 
 #include "core/Camera.h"

@@ -9,7 +9,8 @@
 #include "raycast/FloatingHorizonTables.h"
 #include "raycast/RowSearch.h"
 
-#include <glm/trigonometric.hpp>
+#include "TestCameras.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,16 +35,16 @@ Terrain three_by_three() {
 // Eye (5, 4, -20), north of the map, facing south: F = +Z, R = F x Y = -X.
 // 2x4 pixels, fp = 2 (fov = 2 atan(1/2)), near 1, far 5.
 Camera small_camera(double pitch, Projection projection) {
-    Camera c;
-    c.eye = {5.0, 4.0, -20.0};
-    c.pitch = pitch;
-    c.projection = projection;
-    c.fov = 2.0 * glm::degrees(std::atan(0.5));
-    c.width = 2;
-    c.height = 4;
-    c.near = 1;
-    c.far = 5;
-    return c;
+    return test::two_by_four({5.0, 4.0, -20.0}, pitch, projection);
+}
+
+// Slices from d_first to d_last, h_scale 10.
+SlicePlacement placement(double d_first, double d_last) {
+    SlicePlacement p;
+    p.d_first = d_first;
+    p.d_last = d_last;
+    p.h_scale = 10;
+    return p;
 }
 
 // fp = 1 / tan(atan(1/2)) is 2 to within rounding, so values derived from it are compared to within 1e-12.
@@ -67,12 +68,8 @@ TEST(FloatingHorizonTables, ViewAxesInGridUnits) {
 
 // One cell apart from d_first while d <= d_last.
 TEST(FloatingHorizonTables, SlicesOneCellApart) {
-    SlicePlacement p;
-    p.d_first = 1;
-    p.d_last = 35;
-    p.h_scale = 10;
     Slices s;
-    place_slices(p, s);
+    place_slices(placement(1, 35), s);
     EXPECT_TRUE(s.uniform);
     EXPECT_EQ(s.step, 10.0);
     EXPECT_EQ(s.d, (std::vector<double>{1, 11, 21, 31}));
@@ -83,10 +80,7 @@ TEST(FloatingHorizonTables, SlicesOneCellApart) {
 // Near refinement: a step spans at most near_step_pixels = 1 pixel, d / fp_h
 // with fp_h = 2, between 1/8 cell (1.25) and one cell (10).
 TEST(FloatingHorizonTables, SlicesNarrowNearTheEye) {
-    SlicePlacement p;
-    p.d_first = 1;
-    p.d_last = 35;
-    p.h_scale = 10;
+    SlicePlacement p = placement(1, 35);
     p.fp_h = 2;
     p.near_step_pixels = 1;
     Slices s;
@@ -102,10 +96,7 @@ TEST(FloatingHorizonTables, SlicesNarrowNearTheEye) {
 // lod_pixels 2^L = 5 * 2^L (fp_h = 1): level 1 from d = 10, level 2 from
 // d = 20 (the deepest of lod_levels = 2), each level's step 2^L cells.
 TEST(FloatingHorizonTables, SlicesStepThroughLodLevels) {
-    SlicePlacement p;
-    p.d_first = 1;
-    p.d_last = 60;
-    p.h_scale = 10;
+    SlicePlacement p = placement(1, 60);
     p.fp_h = 1;
     p.lod = true;
     p.lod_levels = 2;

@@ -11,7 +11,8 @@
 #include "raycast/FloatingHorizon.h"
 #include "raycast/FloatingHorizonLiteral.h"
 
-#include <glm/trigonometric.hpp>
+#include "TestCameras.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,18 +47,7 @@ Terrain hand_terrain() {
 //   col 0: (2,3) sigma -0.1 paints j = 0,1; (3,3) -0.067 < 0.25; (4,3) 0.95 paints j = 2,3.
 //   col 1: (3,1) sigma -0.733 > -0.75 paints j = 0; (4,1) -0.3 < -0.25; the rest is sky.
 // Window depth (f - f n / d) / (f - n): d = 2 -> 0.625, 3 -> 0.8333, 4 -> 0.9375.
-Camera hand_camera() {
-    Camera c;
-    c.eye = {2.1, 2.2, 0.0};
-    c.heading = 0;
-    c.pitch = 0;
-    c.fov = 2.0 * glm::degrees(std::atan(0.5));
-    c.width = 2;
-    c.height = 4;
-    c.near = 1;
-    c.far = 5;
-    return c;
-}
+Camera hand_camera() { return test::two_by_four({2.1, 2.2, 0.0}); }
 
 void expect_hand_image(const ColorImage& color, const DepthImage& depth) {
     const Rgb8 c43{40, 30, 100}, c23{20, 30, 100}, c31{30, 10, 100};
