@@ -3,12 +3,7 @@ function(overflight_target_defaults target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wno-missing-field-initializers
     $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
     # GCC 12 reports false -Wrestrict positives inside std::string (GCC bug 105329).
-    $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>
-    # Float expressions are evaluated as written, never fused into FMAs where
-    # the target has them (the ray caster's x86-64-v3 cast kernel): its
-    # exactness arguments and its kernels' bit-for-bit agreement count every
-    # rounding.
-    -ffp-contract=off)
+    $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   if(OVERFLIGHT_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -3,9 +3,11 @@
 #include "core/Camera.h"
 #include "core/Terrain.h"
 
+#include <glm/trigonometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace overflight::test {
 
@@ -40,6 +42,21 @@ inline Camera camera_at(glm::dvec3 eye, double heading, double pitch, double far
     c.height = height;
     c.near = 1;
     c.far = far;
+    return c;
+}
+
+// The hand-worked tests' camera: 2x4 pixels, fp = 2 (fov = 2 atan(1/2)),
+// near 1, far 5, facing south (heading 0: F = +Z, R = -X).
+inline Camera two_by_four(glm::dvec3 eye, double pitch = 0.0, Projection proj = Projection::Shear) {
+    Camera c;
+    c.eye = eye;
+    c.pitch = pitch;
+    c.projection = proj;
+    c.fov = 2.0 * glm::degrees(std::atan(0.5));
+    c.width = 2;
+    c.height = 4;
+    c.near = 1;
+    c.far = 5;
     return c;
 }
 

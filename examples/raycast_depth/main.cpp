@@ -31,10 +31,10 @@ int main() {
         camera.eye = {0.2 * terrain.width(), terrain.max_height() + 200.0, 0.2 * terrain.depth()};
         camera.far = 2.0 * std::max(terrain.width(), terrain.depth());
 
-        FloatingHorizon caster(terrain, data.environment);
+        FloatingHorizon caster(terrain);
         ColorImage color;
         DepthImage depth;
-        caster.render(camera, RaycastOptions{}, color, depth);
+        caster.render(camera, data.environment, RaycastOptions{}, color, depth);
 
         long long terrain_pixels = 0;
         double nearest = std::numeric_limits<double>::infinity(), farthest = 0;

@@ -14,20 +14,18 @@ namespace {
 
 class VoxelMethod final : public TerrainMethod {
 public:
-    explicit VoxelMethod(const MethodContext& c) : caster_(c.terrain, env_), options_(c.settings.raycast) {}
+    explicit VoxelMethod(const MethodContext& c) : caster_(c.terrain), options_(c.settings.raycast) {}
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
-        env_ = view.environment;
         RaycastStats s;
-        caster_.render(view.camera, options_, color_, depth_, &s);
+        caster_.render(view.camera, view.environment, options_, color_, depth_, &s);
         stats.steps.push_back({"raycast", s.ms_total});
         stats.raycast = s;
         return {MethodOutputKind::Images, &color_, &depth_};
     }
 
 private:
-    Environment env_; // before caster_, which reads it every frame
     FloatingHorizon caster_;
     RaycastOptions options_;
     ColorImage color_;

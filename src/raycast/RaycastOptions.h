@@ -16,7 +16,8 @@ enum class SurfaceModel { Blocks, Bilinear };
 //            (planes at twice the pixel density: at most a quarter pixel
 //            sideways, exact vertically);
 //   Guedes - Guedes' per-row ray slopes dz[row] and incremental d-buffer
-//            (seed 002, Algorithm 1): each column is one vertical plane.
+//            (Guedes, "Integrating Polygonal Objects on Voxel Based Terrain
+//            Models", Algorithm 1): each column is one vertical plane.
 enum class TiltMethod { Exact, Guedes };
 
 // The instruction set the Floating Horizon's block cast is compiled for. Auto

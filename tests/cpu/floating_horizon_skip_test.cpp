@@ -1,8 +1,9 @@
 // The Floating Horizon's speed-ups must not change a single pixel. Skipping
 // runs of slices with the max-height pyramid (SliceRunBound): a run is skipped
 // only when every sample in it stays below the horizon, where Algorithm 1
-// (Szenberg 1997) paints nothing. The cast compiled for x86-64-v3
-// (CastKernel): the same operations as the portable one.
+// (Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of a
+// Terrain with Objects", SIBGRAPI 1997) paints nothing. The cast compiled for
+// x86-64-v3 (CastKernel): the same operations as the portable one.
 #include "TestSupport.h"
 
 #include "core/Camera.h"
@@ -33,30 +34,33 @@ std::uint16_t nearest(const Terrain& t, std::int64_t gx, std::int64_t gz) {
     return t.raw(int(gz >> 32), int(gx >> 32));
 }
 
-// Renders a sweep of views with and without skipping; returns the number of
-// views compared. Every pixel's color and depth must be bit-identical.
-int expect_same_with_and_without_skipping(const DataSet& ds, Projection proj, SurfaceModel surface) {
-    FloatingHorizon fh(ds.terrain, ds.environment);
+// Renders a sweep of views with and without skipping: every pixel's color
+// and depth must be bit-identical. Returns the samples skipping spared over
+// the sweep (so that the comparison is not between two casts that skipped
+// nothing); every view must show terrain.
+long long expect_same_with_and_without_skipping(const DataSet& ds, Projection proj, SurfaceModel surface) {
+    FloatingHorizon fh(ds.terrain);
     RaycastOptions skip, full;
     skip.surface = full.surface = surface;
     full.skip_runs = false;
     ColorImage c1, c2;
     DepthImage d1, d2;
     RaycastStats s1, s2;
-    int views = 0;
+    long long spared = 0;
     for (double heading = 0; heading < 360; heading += 45)
         for (double pitch : {-30.0, -12.0, 0.0, 15.0}) {
             const Camera cam = test::across_terrain(ds.terrain, heading, pitch, proj);
-            fh.render(cam, skip, c1, d1, &s1);
-            fh.render(cam, full, c2, d2, &s2);
-            ++views;
+            fh.render(cam, ds.environment, skip, c1, d1, &s1);
+            fh.render(cam, ds.environment, full, c2, d2, &s2);
             EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)))
                 << "color, heading " << heading << " pitch " << pitch;
             EXPECT_EQ(0, std::memcmp(d1.pixels.data(), d2.pixels.data(), d1.pixels.size() * sizeof(float)))
                 << "depth, heading " << heading << " pitch " << pitch;
+            EXPECT_GT(s1.pixels_painted, 0) << "heading " << heading << " pitch " << pitch;
             EXPECT_LE(s1.samples_visited, s2.samples_visited);
+            spared += s2.samples_visited - s1.samples_visited;
         }
-    return views;
+    return spared;
 }
 
 } // namespace
@@ -133,31 +137,31 @@ TEST(SliceRunBound, NotUsableWithoutACoarseEnoughLevel) {
 TEST(FloatingHorizonRunSkipping, SameImageAsWithoutOnTheDemo) {
     const DataSet ds = make_demo_island({257});
     for (SurfaceModel surface : {SurfaceModel::Blocks, SurfaceModel::Bilinear}) {
-        EXPECT_EQ(expect_same_with_and_without_skipping(ds, Projection::Shear, surface), 32);
-        EXPECT_EQ(expect_same_with_and_without_skipping(ds, Projection::Tilt, surface), 32);
+        EXPECT_GT(expect_same_with_and_without_skipping(ds, Projection::Shear, surface), 0);
+        EXPECT_GT(expect_same_with_and_without_skipping(ds, Projection::Tilt, surface), 0);
     }
 }
 
 TEST(FloatingHorizonRunSkipping, SameImageAsWithoutOnCraterLake) {
     OVERFLIGHT_SHARED_FILE(path, "bt/crater_0513.bt");
     const DataSet ds = load_terrain(path);
-    EXPECT_EQ(expect_same_with_and_without_skipping(ds, Projection::Shear, SurfaceModel::Blocks), 32);
-    EXPECT_EQ(expect_same_with_and_without_skipping(ds, Projection::Shear, SurfaceModel::Bilinear), 32);
+    EXPECT_GT(expect_same_with_and_without_skipping(ds, Projection::Shear, SurfaceModel::Blocks), 0);
+    EXPECT_GT(expect_same_with_and_without_skipping(ds, Projection::Shear, SurfaceModel::Bilinear), 0);
 }
 
 // Skipping reads fewer samples (not a time; on this small view a quarter fewer,
 // on the bench's 4097^2 view a quarter as many).
 TEST(FloatingHorizonRunSkipping, ReadsFewerSamples) {
     const DataSet ds = make_demo_island({257});
-    FloatingHorizon fh(ds.terrain, ds.environment);
+    FloatingHorizon fh(ds.terrain);
     const Camera cam = test::across_terrain(ds.terrain, 0, -12, Projection::Shear);
     RaycastOptions full;
     full.skip_runs = false;
     ColorImage c;
     DepthImage d;
     RaycastStats with, without;
-    fh.render(cam, {}, c, d, &with);
-    fh.render(cam, full, c, d, &without);
+    fh.render(cam, ds.environment, {}, c, d, &with);
+    fh.render(cam, ds.environment, full, c, d, &without);
     EXPECT_LT(with.samples_visited * 5, without.samples_visited * 4)
         << with.samples_visited << " vs " << without.samples_visited;
 }
@@ -168,10 +172,10 @@ TEST(FloatingHorizonRunSkipping, ReadsFewerSamples) {
 TEST(FloatingHorizonCastKernels, SameImageOnEveryInstructionSet) {
     if (!cast_kernel_available(CastKernel::X86_64_v3)) GTEST_SKIP() << "no x86-64-v3 on this CPU";
     const DataSet ds = make_demo_island({1025});
-    FloatingHorizon fh(ds.terrain, ds.environment);
+    FloatingHorizon fh(ds.terrain);
     ColorImage c1, c2;
     DepthImage d1, d2;
-    int views = 0;
+    RaycastStats stats;
     for (Projection proj : {Projection::Shear, Projection::Tilt})
         for (SurfaceModel surface : {SurfaceModel::Blocks, SurfaceModel::Bilinear})
             for (double heading = 0; heading < 360; heading += 45)
@@ -183,13 +187,13 @@ TEST(FloatingHorizonCastKernels, SameImageOnEveryInstructionSet) {
                     Camera cam = test::across_terrain(ds.terrain, heading, pitch, proj);
                     cam.width = 960;
                     cam.height = 540;
-                    fh.render(cam, portable, c1, d1);
-                    fh.render(cam, v3, c2, d2);
-                    ++views;
+                    fh.render(cam, ds.environment, portable, c1, d1);
+                    fh.render(cam, ds.environment, v3, c2, d2, &stats);
                     EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)))
                         << "color, heading " << heading << " pitch " << pitch;
                     EXPECT_EQ(0, std::memcmp(d1.pixels.data(), d2.pixels.data(), d1.pixels.size() * sizeof(float)))
                         << "depth, heading " << heading << " pitch " << pitch;
+                    // Terrain in view: the images have something to disagree on.
+                    EXPECT_GT(stats.pixels_painted, 0) << "heading " << heading << " pitch " << pitch;
                 }
-    EXPECT_EQ(views, 96);
 }

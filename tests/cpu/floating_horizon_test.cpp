@@ -1,5 +1,7 @@
 // Floating Horizon on a 5x5 height field whose image is worked out by hand
-// (Szenberg 1997 Algorithm 1 with the sec. 5.2 slices), for the fast caster
+// (Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of a
+// Terrain with Objects", SIBGRAPI 1997: Algorithm 1 with the sec. 5.2
+// slices), for the fast caster
 // and the literal transcription; plus the per-frame properties of the fast one.
 #include "core/Camera.h"
 #include "core/DataSet.h"
@@ -9,7 +11,8 @@
 #include "raycast/FloatingHorizon.h"
 #include "raycast/FloatingHorizonLiteral.h"
 
-#include <glm/trigonometric.hpp>
+#include "TestCameras.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,18 +47,7 @@ Terrain hand_terrain() {
 //   col 0: (2,3) sigma -0.1 paints j = 0,1; (3,3) -0.067 < 0.25; (4,3) 0.95 paints j = 2,3.
 //   col 1: (3,1) sigma -0.733 > -0.75 paints j = 0; (4,1) -0.3 < -0.25; the rest is sky.
 // Window depth (f - f n / d) / (f - n): d = 2 -> 0.625, 3 -> 0.8333, 4 -> 0.9375.
-Camera hand_camera() {
-    Camera c;
-    c.eye = {2.1, 2.2, 0.0};
-    c.heading = 0;
-    c.pitch = 0;
-    c.fov = 2.0 * glm::degrees(std::atan(0.5));
-    c.width = 2;
-    c.height = 4;
-    c.near = 1;
-    c.far = 5;
-    return c;
-}
+Camera hand_camera() { return test::two_by_four({2.1, 2.2, 0.0}); }
 
 void expect_hand_image(const ColorImage& color, const DepthImage& depth) {
     const Rgb8 c43{40, 30, 100}, c23{20, 30, 100}, c31{30, 10, 100};
@@ -79,11 +71,11 @@ void expect_hand_image(const ColorImage& color, const DepthImage& depth) {
 TEST(FloatingHorizon, HandWorkedFiveByFive) {
     const Terrain t = hand_terrain();
     const Environment env;
-    FloatingHorizon fh(t, env);
+    FloatingHorizon fh(t);
     ColorImage color;
     DepthImage depth;
     RaycastStats stats;
-    fh.render(hand_camera(), {}, color, depth, &stats);
+    fh.render(hand_camera(), env, {}, color, depth, &stats);
     expect_hand_image(color, depth);
     EXPECT_EQ(stats.columns, 2);
     EXPECT_EQ(stats.slices, 5);
@@ -105,11 +97,11 @@ TEST(FloatingHorizon, SkyPixelsGetTheSkyGradient) {
     Environment env;
     env.sky_horizon = {1, 0, 0};
     env.sky_zenith = {0, 0, 1};
-    FloatingHorizon fh(t, env);
+    FloatingHorizon fh(t);
     ColorImage color;
     DepthImage depth;
     Camera cam = hand_camera();
-    fh.render(cam, {}, color, depth);
+    fh.render(cam, env, {}, color, depth);
     // Column 1, top row: ray (0.25, 0.75, 1) in (R, Y, F); sin(elevation) = 0.75 / sqrt(1.625) = 0.588.
     const Rgb8 expect = sky_color(env, glm::dvec3(0.25, 0.75, 1.0));
     EXPECT_NEAR(color.at(1, 0).r, expect.r, 1);
@@ -123,12 +115,12 @@ TEST(FloatingHorizon, FogUsesTheEyeDistance) {
     Environment env;
     env.fog_density = 0.2f;
     env.fog_color = {0, 0, 0};
-    FloatingHorizon fh(t, env);
+    FloatingHorizon fh(t);
     Camera cam = hand_camera();
     cam.eye.y = 0.5; // bottom row: slope -0.75 -> hits the flat ground at the first slice below the eye
     ColorImage color;
     DepthImage depth;
-    fh.render(cam, {}, color, depth);
+    fh.render(cam, env, {}, color, depth);
     // Bottom row, column 0: painted at slice d = 1 (0 > 0.5 - 0.75): ray (-0.25, -0.75, 1) per unit depth,
     // eye distance sqrt(1 + 0.0625 + 0.5625) = 1.2748, factor exp(-0.255) = 0.775, 200 * 0.775 = 155.
     EXPECT_NEAR(color.at(0, 3).r, 155, 1);
@@ -138,12 +130,12 @@ TEST(FloatingHorizon, FogUsesTheEyeDistance) {
 TEST(FloatingHorizon, BadCameraThrows) {
     const Terrain t = hand_terrain();
     const Environment env;
-    FloatingHorizon fh(t, env);
+    FloatingHorizon fh(t);
     ColorImage color;
     DepthImage depth;
     Camera cam = hand_camera();
     cam.far = 0.5;
-    EXPECT_THROW(fh.render(cam, {}, color, depth), Error);
+    EXPECT_THROW(fh.render(cam, env, {}, color, depth), Error);
     cam = hand_camera();
     cam.projection = Projection::Tilt;
     EXPECT_THROW(render_floating_horizon_literal(t, env, cam, SurfaceModel::Blocks, color, depth), Error);
@@ -153,7 +145,7 @@ TEST(FloatingHorizon, EyeOutsideTheMapLookingAtItSeesIt) {
     Terrain t(9, 9, 10.0f);
     for (auto& h : t.heights()) h = 50;
     const Environment env;
-    FloatingHorizon fh(t, env);
+    FloatingHorizon fh(t);
     Camera cam;
     cam.eye = {40, 100, -200}; // north of the map, facing south
     cam.width = 40;
@@ -164,7 +156,7 @@ TEST(FloatingHorizon, EyeOutsideTheMapLookingAtItSeesIt) {
     ColorImage color;
     DepthImage depth;
     RaycastStats stats;
-    fh.render(cam, {}, color, depth, &stats);
+    fh.render(cam, env, {}, color, depth, &stats);
     EXPECT_GT(stats.pixels_painted, 0);
     EXPECT_LT(stats.samples_visited, stats.samples); // slices off the map are clipped, not visited
     // The bottom row looks at the (empty) ground north of the map and passes under
@@ -179,13 +171,13 @@ TEST(FloatingHorizon, EyeOutsideTheMapLookingAtItSeesIt) {
 TEST(FloatingHorizon, ReusesBuffersAcrossFrames) {
     const Terrain t = hand_terrain();
     const Environment env;
-    FloatingHorizon fh(t, env);
+    FloatingHorizon fh(t);
     ColorImage color;
     DepthImage depth;
-    fh.render(hand_camera(), {}, color, depth);
+    fh.render(hand_camera(), env, {}, color, depth);
     const Rgb8* c0 = color.pixels.data();
     const float* d0 = depth.pixels.data();
-    fh.render(hand_camera(), {}, color, depth);
+    fh.render(hand_camera(), env, {}, color, depth);
     EXPECT_EQ(c0, color.pixels.data());
     EXPECT_EQ(d0, depth.pixels.data());
     expect_hand_image(color, depth);

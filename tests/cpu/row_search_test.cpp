@@ -33,7 +33,8 @@ void expect_lower_bound(const std::vector<float>& rows, float sigma) {
         ASSERT_EQ(search.first_not_below(sigma, guess), want) << "sigma " << sigma << " n " << n << " guess " << guess;
 }
 
-// Slopes of a shear camera's rows, bottom-up, as FloatingHorizon::cast_shear makes them.
+// Slopes of a shear camera's rows, bottom-up, as the Floating Horizon makes them
+// (shear_rows in raycast/FloatingHorizonTables.h).
 std::vector<float> shear_rows(int H, double fp, double shift) {
     std::vector<float> m(static_cast<std::size_t>(H));
     for (int j = 0; j < H; ++j) m[std::size_t(j)] = float((H * 0.5 - ((H - 1 - j) + 0.5) + shift) / fp);

@@ -55,9 +55,9 @@ struct Frame {
 };
 
 Frame voxel(const DataSet& d, const Camera& cam) {
-    FloatingHorizon fh(d.terrain, d.environment);
+    FloatingHorizon fh(d.terrain);
     Frame f;
-    fh.render(cam, RaycastOptions{}, f.color, f.depth);
+    fh.render(cam, d.environment, RaycastOptions{}, f.color, f.depth);
     return f;
 }
 

@@ -1,0 +1,66 @@
+// The block cast compiled for the baseline instruction set, the terrain it
+// samples, and the run-time pick of the kernel (CastKernel). See
+// FloatingHorizonCast.h.
+#include "raycast/FloatingHorizonCast.inl"
+
+#include "raycast/FloatingHorizon.h"
+
+namespace overflight {
+
+CastTerrain::CastTerrain(const Terrain& t)
+    : terrain(t), max_height(t.max_height()), max_pyramid(t, kRunLevels, false) {
+    colors.resize(t.colors().size());
+    for (std::size_t i = 0; i < colors.size(); ++i) colors[i] = pack_rgb(t.colors()[i]);
+    level_heights[0] = t.heights().data();
+    level_colors[0] = colors.data();
+    level_cols[0] = t.cols();
+}
+
+int CastTerrain::lod_levels() {
+    if (!lod_pyramid) {
+        lod_pyramid = std::make_unique<HeightPyramid>(terrain, 12);
+        for (int L = 1; L <= std::min(lod_pyramid->levels(), kMaxLevels - 1); ++L) {
+            level_heights[L] = lod_pyramid->level(L).heights.data();
+            level_colors[L] = lod_pyramid->level(L).colors.data();
+            level_cols[L] = lod_pyramid->level(L).cols;
+        }
+    }
+    return std::min(lod_pyramid->levels(), kMaxLevels - 1);
+}
+
+long long cast_columns_portable(const CastTerrain& terrain, const CastFrame& frame, SurfaceModel surface, int c0,
+                                int c1, std::uint32_t* color, std::uint32_t* slice, int* jend,
+                                std::ptrdiff_t col_stride, std::ptrdiff_t row_stride) {
+    return cast_columns_body(terrain, frame, surface, c0, c1, color, slice, jend, col_stride, row_stride);
+}
+
+// CastKernel::X86_64_v3 is built with GCC for x86-64 (src/CMakeLists.txt):
+// GCC names the level in __builtin_cpu_supports.
+bool cast_kernel_available(CastKernel kernel) {
+    switch (kernel) {
+    case CastKernel::Auto:
+    case CastKernel::Portable: return true;
+    case CastKernel::X86_64_v3:
+#if OVERFLIGHT_CAST_X86_64_V3
+        return __builtin_cpu_supports("x86-64-v3");
+#else
+        return false;
+#endif
+    }
+    return false;
+}
+
+long long cast_columns(const CastTerrain& terrain, const CastFrame& frame, const RaycastOptions& options, int c0,
+                       int c1, std::uint32_t* color, std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride,
+                       std::ptrdiff_t row_stride) {
+    if (c1 - c0 > kBlock) throw std::logic_error("FloatingHorizon: more columns than one block");
+#if OVERFLIGHT_CAST_X86_64_V3
+    static const bool v3 = cast_kernel_available(CastKernel::X86_64_v3);
+    if (v3 && options.kernel != CastKernel::Portable)
+        return cast_columns_x86_64_v3(terrain, frame, options.surface, c0, c1, color, slice, jend, col_stride,
+                                      row_stride);
+#endif
+    return cast_columns_portable(terrain, frame, options.surface, c0, c1, color, slice, jend, col_stride, row_stride);
+}
+
+} // namespace overflight

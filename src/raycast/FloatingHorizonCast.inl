@@ -1,0 +1,411 @@
+// The body of the Floating Horizon's block cast (FloatingHorizonCast.h),
+// included by one source file per instruction set, each compiling it for its
+// own. Everything here has internal linkage (an unnamed namespace) and is
+// inlined into the including file's one entry point, so that no copy
+// compiled for one instruction set can stand in for the other's.
+//
+// Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization
+// of a Terrain with Objects", SIBGRAPI 1997, Algorithm 1 (each pixel column
+// is painted bottom-up; a sample that rises above the current horizon paints
+// pixels until the horizon passes it) with the slices of sec. 5.2.
+#include "raycast/FloatingHorizonCast.h"
+
+#include "raycast/RowSearch.h"
+#include "raycast/ShearResolve.h"
+#include "raycast/SliceRunBound.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace overflight {
+
+namespace {
+
+// Columns per cast: a block is cast into a scratch that stays in L2
+// (kShearBlock x 1080 x 8 bytes, row-major within the block).
+constexpr int kBlock = kShearBlock;
+
+// Slices per skip test (SliceRunBound): a coarse run, split into fine runs
+// when its bound reaches the horizon, and those into single samples.
+// Measured on the bench view: 16/4 to 64/16 are within a few percent.
+constexpr int kRunCoarse = 32;
+constexpr int kRunFine = 8;
+// The bound is compared in float with the per-slice tables: every rounding
+// step involved (tables, product, sum) is within 2^-24 of the operands'
+// magnitude, so 2^-20 of it covers them all.
+constexpr float kRunSlack = 1.0f / 1048576.0f;
+
+constexpr double kFixedOne = 4294967296.0; // 32.32 fixed point
+
+// No sample of height <= h (raw) in the run of slices [k, k + run) can rise
+// above the horizon m: its sigma = h a_k' + b_k' is linear in 1/d_k', so at
+// most the larger value at the run's two ends; kRunSlack covers the float
+// rounding of the tables and of sigma.
+[[gnu::always_inline]] inline bool run_below(const float* ma, const float* mb, int k, int run, float h, float m) {
+    const int e = k + run - 1;
+    const float bound = std::max(h * ma[k] + mb[k], h * ma[e] + mb[e]);
+    return bound + (h * ma[k] + std::abs(mb[k])) * kRunSlack <= m;
+}
+
+// One column of cast_blocks between two of its turns: the state of
+// Algorithm 1 (horizon row j, next slice k) and of its run skipping.
+struct BlockRay {
+    std::int64_t gx = 0, gz = 0, sx = 0, sz = 0; // position of slice k and step, 32.32, offset by half a cell
+    SliceRunBound coarse, fine;
+    int k = 0, k1 = 0; // next slice (the start of a coarse run), end of the column
+    int j = 0;         // horizon row (its slope is rows.m[j])
+    // The last fine run painted: the next one most likely paints too (near
+    // the eye every slice does), so it is cast without testing (measured: 5 %
+    // faster).
+    bool hot = false;
+};
+
+// Algorithm 1 for one column, bottom-up. m_j (rows.m) is the slope of row j's
+// ray per unit of view depth; the current horizon at slice k is
+// eye_y + d_k m_j, and a sample of height h rises above it when
+// (h - eye_y)/d_k > m_j, i.e. raw a_k + b_k > m_j (SliceSlopes). Painting a
+// pixel moves the horizon up one row (eq. 2); rows only climb, so the column
+// is done when the top row is painted or no later slice can reach the horizon
+// (SliceSlopes::smax). Color and slice index are stored; depth and fog come
+// from the slice when the column is resolved. This is the general case
+// (bilinear surface, LOD and near refinement); cast_blocks is the papers'
+// case.
+template <bool kBilinear, bool kVarying>
+int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* color, std::uint32_t* slice,
+                std::ptrdiff_t stride, long long& visited) {
+    const std::vector<double>& slice_d = f.slices.d;
+    const int k0 = f.columns.k0[std::size_t(c)], k1 = f.columns.k1[std::size_t(c)];
+    const double ux = f.columns.ux[std::size_t(c)], uz = f.columns.uz[std::size_t(c)];
+    const int cols = t.terrain.cols();
+    const std::uint16_t* heights = t.terrain.heights().data();
+    const std::uint32_t* colors = t.colors.data();
+    const float* ma = f.slopes.a.data();
+    const float* mb = f.slopes.b.data();
+    const float* smax = f.slopes.smax.data();
+    const float* rows = f.rows.m.data();
+    const int nrows = f.rows.count;
+    const double eye_gx = f.view.eye_gx, eye_gz = f.view.eye_gz;
+    int j = 0;
+    float mj = rows[0];
+    int k = k0;
+    // Incremental stepping (line 6 of Algorithm 1) in double: 2^-52 per step
+    // cannot drift a sample into the next cell over any far plane.
+    double gx = eye_gx + (k0 < k1 ? slice_d[std::size_t(k0)] : 0.0) * ux;
+    double gz = eye_gz + (k0 < k1 ? slice_d[std::size_t(k0)] : 0.0) * uz;
+    const double step = slice_d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
+    const double sx = step * ux, sz = step * uz;
+    // One-cell bilinear slices skip runs as cast_blocks does (fine runs
+    // only, positions converted to fixed point for the bound); a skipped run
+    // still steps its positions one slice at a time, so the samples after it
+    // are the same as without the skip.
+    constexpr bool kSkip = kBilinear && !kVarying;
+    const SliceRunBound run(t.max_pyramid, kSkip && f.skip_runs ? kRunFine : 0, std::llround(sx * kFixedOne),
+                            std::llround(sz * kFixedOne), Footprint::Bilinear);
+    int next_test = k0, j_at_test = 0;
+    long long skipped = 0;
+    for (; k < k1; ++k) {
+        if (smax[k] <= mj) break;
+        if (kSkip && k == next_test) {
+            const bool hot = j != j_at_test; // the last run painted: cast the next one without testing
+            j_at_test = j;
+            next_test = k + kRunFine;
+            if (!hot && run.usable() && k + kRunFine <= k1 &&
+                run_below(ma, mb, k, kRunFine,
+                          float(run.max_height(std::llround(gx * kFixedOne), std::llround(gz * kFixedOne))), mj)) {
+                for (int q = 0; q < kRunFine; ++q) {
+                    gx += sx;
+                    gz += sz;
+                }
+                k += kRunFine - 1;
+                skipped += kRunFine;
+                continue;
+            }
+        }
+        if constexpr (kVarying) {
+            gx = eye_gx + slice_d[std::size_t(k)] * ux;
+            gz = eye_gz + slice_d[std::size_t(k)] * uz;
+        }
+        const int ix = int(gx + 0.5), iz = int(gz + 0.5);
+        float h;
+        std::size_t ci;
+        int level = 0;
+        if constexpr (kVarying) level = f.slices.level[std::size_t(k)];
+        if (kVarying && level > 0) {
+            ci = std::size_t(iz >> level) * std::size_t(t.level_cols[level]) + std::size_t(ix >> level);
+            h = float(t.level_heights[level][ci]);
+        } else if constexpr (kBilinear) {
+            const int c0 = std::min(std::max(int(gx), 0), cols - 2);
+            const int r0 = std::min(std::max(int(gz), 0), t.terrain.rows() - 2);
+            const float tx = float(gx - c0), tz = float(gz - r0);
+            const std::uint16_t* p = heights + std::size_t(r0) * std::size_t(cols) + std::size_t(c0);
+            const float top = float(p[0]) + (float(p[1]) - float(p[0])) * tx;
+            const float bottom = float(p[cols]) + (float(p[cols + 1]) - float(p[cols])) * tx;
+            h = top + (bottom - top) * tz;
+            ci = std::size_t(iz) * std::size_t(cols) + std::size_t(ix);
+        } else {
+            ci = std::size_t(iz) * std::size_t(cols) + std::size_t(ix);
+            h = float(heights[ci]);
+        }
+        const float sigma = h * ma[k] + mb[k];
+        if (sigma > mj) {
+            const std::uint32_t col = (kVarying && level > 0) ? t.level_colors[level][ci] : colors[ci];
+            do { // paint, move the horizon up one pixel (lines 10-14)
+                color[std::ptrdiff_t(j) * stride] = col;
+                slice[std::ptrdiff_t(j) * stride] = std::uint32_t(k);
+                mj = rows[++j];
+            } while (sigma > mj);
+            if (j >= nrows) {
+                ++k;
+                break;
+            }
+        }
+        if constexpr (!kVarying) {
+            gx += sx;
+            gz += sz;
+        }
+    }
+    visited += k - k0 - skipped;
+    return j;
+}
+
+// The state of cast_blocks' columns: set up for a block, then each column
+// takes turns casting one coarse run (cast_run).
+template <std::ptrdiff_t kStride, bool kEvenRows>
+struct BlockCast {
+    BlockRay rays[kBlock];
+    int live[kBlock]; // the columns still casting, in order
+    int n_live = 0;
+    long long visited = 0;
+
+    std::uint32_t* color;
+    std::uint32_t* slice;
+    int* jend;
+    std::ptrdiff_t col_stride;
+    const std::size_t cols;
+    const std::uint16_t* heights;
+    const std::uint32_t* colors;
+    const float* ma;
+    const float* mb;
+    const float* smax;
+    const float* rows;
+    const int nrows;
+    const RowSearch search;
+    const SliceGuess* guesses;
+
+    [[gnu::always_inline]] BlockCast(const CastTerrain& t, const CastFrame& frame, int c0, int c1,
+                                     std::uint32_t* out_color, std::uint32_t* out_slice, int* out_jend,
+                                     std::ptrdiff_t out_col_stride)
+        : color(out_color), slice(out_slice), jend(out_jend), col_stride(out_col_stride),
+          cols(std::size_t(t.terrain.cols())), heights(t.terrain.heights().data()), colors(t.colors.data()),
+          ma(frame.slopes.a.data()), mb(frame.slopes.b.data()), smax(frame.slopes.smax.data()),
+          rows(frame.rows.m.data()), nrows(frame.rows.count), search(rows, kEvenRows ? nrows : 0),
+          guesses(frame.guesses.data()) {
+        const std::vector<double>& slice_d = frame.slices.d;
+        const Columns& cc = frame.columns;
+        const double step = slice_d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
+        for (int c = c0; c < c1; ++c) {
+            const std::size_t ic = std::size_t(c);
+            const int k0 = cc.k0[ic], k1 = cc.k1[ic];
+            jend[c - c0] = 0;
+            if (k0 >= k1 || nrows == 0) continue;
+            BlockRay& r = rays[c - c0];
+            const double d0 = slice_d[std::size_t(k0)];
+            r.gx = std::llround((frame.view.eye_gx + d0 * cc.ux[ic] + 0.5) * kFixedOne);
+            r.gz = std::llround((frame.view.eye_gz + d0 * cc.uz[ic] + 0.5) * kFixedOne);
+            r.sx = std::llround(step * cc.ux[ic] * kFixedOne);
+            r.sz = std::llround(step * cc.uz[ic] * kFixedOne);
+            r.coarse = SliceRunBound(t.max_pyramid, frame.skip_runs ? kRunCoarse : 0, r.sx, r.sz);
+            r.fine = SliceRunBound(t.max_pyramid, frame.skip_runs ? kRunFine : 0, r.sx, r.sz);
+            r.k = k0;
+            r.k1 = k1;
+            r.j = 0;
+            r.hot = false;
+            live[n_live++] = c - c0;
+        }
+    }
+
+    // No sample of the run of slices from k at (x, z) can rise above the horizon m.
+    [[gnu::always_inline]] bool below(const SliceRunBound& run, int k, std::int64_t x, std::int64_t z, float m) const {
+        return run_below(ma, mb, k, run.run(), float(run.max_height(x, z)), m);
+    }
+
+    // Lines 5-16 of Algorithm 1 for the slices [k, ke) of column i, from
+    // horizon row j at position (gx, gz). False when the column is full
+    // (jend written).
+    [[gnu::always_inline]] bool cast_slices(int i, int& k, int ke, int& j, float& mj, std::int64_t& gx,
+                                            std::int64_t& gz, std::int64_t sx, std::int64_t sz) {
+        std::uint32_t* const out_c = color + std::ptrdiff_t(i) * col_stride;
+        std::uint32_t* const out_s = slice + std::ptrdiff_t(i) * col_stride;
+        visited += ke - k;
+        for (; k < ke; ++k) {
+            const std::size_t ci = std::size_t(gz >> 32) * cols + std::size_t(gx >> 32);
+            gx += sx;
+            gz += sz;
+            const std::uint16_t raw = heights[ci];
+            if constexpr (kEvenRows) {
+                const SliceGuess& g = guesses[k];
+                const float sigma = float(raw) * g.a + g.b;
+                const std::int64_t guess = (std::int64_t(raw) * g.ga + g.gb) >> kGuessBits;
+                const int top = search.first_not_below(sigma, int(std::clamp<std::int64_t>(guess, 0, nrows)));
+                const std::uint32_t col = colors[ci];
+                std::uint32_t* oc = out_c + std::ptrdiff_t(j) * kStride;
+                std::uint32_t* os = out_s + std::ptrdiff_t(j) * kStride;
+                for (int q = 0; q < kPaintRows; ++q) {
+                    oc[q * kStride] = col;
+                    os[q * kStride] = std::uint32_t(k);
+                }
+                for (int q = j + kPaintRows; q < top; ++q) { // a tall sample (near the eye)
+                    out_c[std::ptrdiff_t(q) * kStride] = col;
+                    out_s[std::ptrdiff_t(q) * kStride] = std::uint32_t(k);
+                }
+                j = std::max(j, top);
+            } else if (const float sigma = float(raw) * ma[k] + mb[k]; sigma > mj) {
+                const std::uint32_t col = colors[ci];
+                do { // paint, move the horizon up one pixel (lines 10-14)
+                    out_c[std::ptrdiff_t(j) * kStride] = col;
+                    out_s[std::ptrdiff_t(j) * kStride] = std::uint32_t(k);
+                    mj = rows[++j];
+                } while (sigma > mj);
+            }
+            if (j == nrows) { // the column is full
+                visited -= ke - k - 1;
+                jend[i] = nrows;
+                return false;
+            }
+        }
+        return true;
+    }
+
+    // One coarse run of column i (one turn of the loop of Algorithm 1 over
+    // the column's runs): skipped whole, or split into fine runs that are
+    // skipped or cast. False when the column is done.
+    [[gnu::always_inline]] bool cast_run(int i) {
+        BlockRay& r = rays[i];
+        int k = r.k, j = r.j;
+        float mj = rows[j];
+        if (k >= r.k1 || smax[k] <= mj) {
+            jend[i] = j;
+            return false;
+        }
+        const std::int64_t sx = r.sx, sz = r.sz;
+        std::int64_t gx = r.gx, gz = r.gz;
+        bool hot = r.hot;
+        if (!hot && r.coarse.usable() && k + kRunCoarse <= r.k1 && below(r.coarse, k, gx, gz, mj)) {
+            r.k = k + kRunCoarse;
+            r.gx = gx + kRunCoarse * sx;
+            r.gz = gz + kRunCoarse * sz;
+            return true;
+        }
+        const int kc = std::min(k + kRunCoarse, r.k1);
+        while (k < kc) {
+            if (!hot && r.fine.usable() && k + kRunFine <= kc && below(r.fine, k, gx, gz, mj)) {
+                k += kRunFine;
+                gx += kRunFine * sx;
+                gz += kRunFine * sz;
+                continue;
+            }
+            const int j_before = j;
+            if (!cast_slices(i, k, std::min(k + kRunFine, kc), j, mj, gx, gz, sx, sz)) return false;
+            mj = rows[j];
+            hot = j != j_before;
+        }
+        r.gx = gx;
+        r.gz = gz;
+        r.k = k;
+        r.j = j;
+        r.hot = hot;
+        return true;
+    }
+
+    // The columns take turns, a coarse run each (sec. 5.2: slice k is at one
+    // view depth for all columns, and the columns start together): the block
+    // moves away from the eye together, so a column finds most of its
+    // terrain lines in L1, where its neighbours just loaded them, rather than
+    // in L2 or further (measured: cast about 5 % faster on the bench view
+    // than column after column). Each column keeps its own state, runs and
+    // tests, so it paints what it would paint alone.
+    [[gnu::always_inline]] long long run() {
+        while (n_live > 0) {
+            int kept = 0;
+            for (int n = 0; n < n_live; ++n)
+                if (cast_run(live[n])) live[kept++] = live[n];
+            n_live = kept;
+        }
+        return visited;
+    }
+};
+
+// cast_column<false, false>, the papers' case (one-cell slices, `blocks`
+// surface), for a block of at most kBlock columns, painting exactly the same
+// pixels faster:
+// - positions in 32.32 fixed point, offset by half a cell so that the nearest
+//   sample is the integer part: exact integer steps, no float-to-int
+//   conversion per sample (2^-32 cell of rounding per step: nothing over 2^16
+//   steps);
+// - runs of slices skipped when no sample in them can rise above the current
+//   horizon: a sample of height h <= H (SliceRunBound) at slice k' of the run
+//   [k, e] has (v_scale h + y0 - eye_y)/d_k' <= the larger of that bound at k
+//   and at e (linear in 1/d), which the float tables give to within
+//   kRunSlack. A run that paints nothing leaves the horizon unchanged, so the
+//   rest of the column is cast exactly as without the skip;
+// - for the shear camera's evenly spaced rows (kEvenRows), lines 9-15 of
+//   Algorithm 1 (paint while the sample is above the horizon) without a
+//   branch on the sample: the row slopes never decrease, so the
+//   horizon moves to the larger of its row and the first row not below the
+//   sample (RowSearch). Every sample writes its color and slice into
+//   kPaintRows rows from the horizon up, painted or not: a row it does not
+//   reach is written again by the sample that paints it, or stays above the
+//   column's top, where the scratch may hold anything. On the bench view a
+//   visited sample paints more often than not, at random, so the branch was
+//   mispredicted at a high rate, each time once the sample's height load
+//   (often a cache miss) had come in. The color is read for every sample,
+//   not only for painting ones, so that its load starts with the height's
+//   rather than after it (measured: 12 % faster on the whole frame);
+// - RowSearch starts from a guess computed from the raw height in integer
+//   (SliceGuess) beside sigma rather than in float from sigma: the cast waits
+//   on the chain behind each height load (perf: the samples sit on the
+//   compares that consume it), and that moves five float operations off it
+//   (measured: cast 10-15 % faster on the bench view). The per-slice values
+//   it reads are one record, so that the loop keeps fewer pointers;
+// - the columns of the block take turns, a coarse run each (BlockCast::run).
+// kStride: row stride of the output; kEvenRows: the rows are evenly spaced in
+// slope (shear) and the output has kPaintRows rows of padding.
+template <std::ptrdiff_t kStride, bool kEvenRows>
+[[gnu::always_inline]] inline long long cast_blocks(const CastTerrain& t, const CastFrame& f, int c0, int c1,
+                                                    std::uint32_t* color, std::uint32_t* slice, int* jend,
+                                                    std::ptrdiff_t col_stride) {
+    BlockCast<kStride, kEvenRows> block(t, f, c0, c1, color, slice, jend, col_stride);
+    return block.run();
+}
+
+[[gnu::always_inline]] inline long long cast_columns_body(const CastTerrain& t, const CastFrame& f,
+                                                          SurfaceModel surface, int c0, int c1, std::uint32_t* color,
+                                                          std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride,
+                                                          std::ptrdiff_t row_stride) {
+    const bool bil = surface == SurfaceModel::Bilinear;
+    const bool uniform = f.slices.uniform;
+    if (uniform && !bil) {
+        if (row_stride == kBlock && f.rows.even)
+            return cast_blocks<kBlock, true>(t, f, c0, c1, color, slice, jend, col_stride);
+        if (row_stride == kBlock) return cast_blocks<kBlock, false>(t, f, c0, c1, color, slice, jend, col_stride);
+        if (row_stride == 1) return cast_blocks<1, false>(t, f, c0, c1, color, slice, jend, col_stride);
+        throw std::logic_error("FloatingHorizon: unsupported scratch layout");
+    }
+    long long visited = 0;
+    for (int c = c0; c < c1; ++c) {
+        std::uint32_t* cc = color + std::ptrdiff_t(c - c0) * col_stride;
+        std::uint32_t* cs = slice + std::ptrdiff_t(c - c0) * col_stride;
+        int j;
+        if (!uniform)
+            j = bil ? cast_column<true, true>(t, f, c, cc, cs, row_stride, visited)
+                    : cast_column<false, true>(t, f, c, cc, cs, row_stride, visited);
+        else j = cast_column<true, false>(t, f, c, cc, cs, row_stride, visited);
+        jend[c - c0] = j;
+    }
+    return visited;
+}
+
+} // namespace
+
+} // namespace overflight

@@ -1,0 +1,65 @@
+#pragma once
+// What the Floating Horizon keeps across frames (private to src/raycast):
+// the terrain as the cast samples it, the frame's tables and the scratch
+// buffers, all reused so that a frame allocates nothing once sizes are stable;
+// and the three casts that fill them, one per camera model.
+#include "core/Camera.h"
+#include "core/DataSet.h"
+#include "core/Image.h"
+#include "raycast/Atmosphere.h"
+#include "raycast/FloatingHorizonCast.h"
+#include "raycast/FloatingHorizonTables.h"
+#include "raycast/RaycastOptions.h"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+namespace overflight {
+
+struct FloatingHorizonState {
+    explicit FloatingHorizonState(const Terrain& t) : terrain(t) {}
+
+    // The frame's slices from d_first to d_last along F (fp_h: the cast's
+    // focal length in pixels, for the LOD and near steps) and the per-slice
+    // tables derived from them; frame.view must be set.
+    void prepare_slices(const Camera& camera, const RaycastOptions& options, double d_first, double d_last,
+                        double fp_h);
+
+    CastTerrain terrain;
+    CastFrame frame;
+    std::vector<float> slice_depth; // shear: window depth of slice k (eq. 7)
+    SkyTable sky;
+    FogTable fog;
+    std::uint32_t fog_color = 0; // packed
+
+    // Shear: one block's cast, row-major within the block, per thread.
+    struct BlockScratch {
+        std::vector<std::uint32_t> color, slice;
+        std::vector<int> jend;
+    };
+    tbb::enumerable_thread_specific<BlockScratch> block_scratch;
+
+    // Tilt: the whole image's cast, column-major (one cast column after the other).
+    TiltRows tilt_rows;
+    std::vector<std::uint32_t> tilt_color, tilt_slice;
+    std::vector<int> tilt_jend;
+};
+
+// The casts, one per camera model (FloatingHorizon::render picks): each
+// fills the images and the stats' setup, cast and resolve steps.
+void cast_shear(FloatingHorizonState& s, const Camera& camera, const Environment& env, const RaycastOptions& options,
+                ColorImage& color, DepthImage& depth, RaycastStats& stats);
+void cast_tilt_exact(FloatingHorizonState& s, const Camera& camera, const Environment& env,
+                     const RaycastOptions& options, ColorImage& color, DepthImage& depth, RaycastStats& stats);
+void cast_tilt_guedes(FloatingHorizonState& s, const Camera& camera, const Environment& env,
+                      const RaycastOptions& options, ColorImage& color, DepthImage& depth, RaycastStats& stats);
+
+using Clock = std::chrono::steady_clock;
+inline double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+} // namespace overflight
