@@ -3,7 +3,7 @@
 // and reports medians, so methods are compared as ratios measured on the same
 // machine at the same moment: Szenberg's Table 1 (steps of the composite) and
 // Table 2 (Z-buffer representations), ROAM's tessellation rate and error curve
-// (seed 003), and Zamri's accuracy of the LOD meshes against the full mesh.
+// (CMSC 23700 project 2a), and Zamri's accuracy of the LOD meshes against the full mesh.
 #include "CameraOptions.h"
 #include "Commands.h"
 #include "OptionValues.h"

@@ -1,7 +1,7 @@
 // `overflight fly TERRAIN [--scene FILE] [--method M] [--record path.csv]
 //                  [--frames N --press KEY:FROM-TO ... --screenshot FILE]
 //                  [--replay path.csv [--frames N] --out DIR [--video out.mp4]]`
-// (DESIGN sec. 6, issue 7). Interactive: a resizable window flying the
+// (DESIGN sec. 6). Interactive: a resizable window flying the
 // hovercraft (gl/FlightWindow). With --frames: an unattended run of N frames
 // with scripted keys (FROM-TO in frames). With --replay: the recorded cameras
 // rendered headless to DIR/frame_00000.png ... (and to a video through ffmpeg).

@@ -1,5 +1,5 @@
 // `overflight sim TERRAIN --steps N [--at X,Z] [--heading D] [--press KEY:FROM-TO ...]`
-// (DESIGN sec. 6): the hovercraft physics of seed 003 sec. 3.2 alone, no GL.
+// (DESIGN sec. 6): the hovercraft physics of CMSC 23700 project 2a sec. 3.2 alone, no GL.
 // Prints CSV `step,x,z,y,velocity,heading` with one row per 10 ms step: row k
 // is the state after step k (k = 0 .. N-1), the step that saw the keys held
 // "during step k" of --press.

@@ -1,4 +1,4 @@
-// Röttger quadtree over overlapping 257^2 tiles (Zamri, seed 001; issue 6):
+// Röttger quadtree over overlapping 257^2 tiles (Zamri):
 // per-frame CPU cost of building the mesh (select + cull + load + refine +
 // fans, the tile cache warm) and Zamri's metrics beside it -- triangles per
 // frame, reduction against the full-resolution mesh of the whole terrain,

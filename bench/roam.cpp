@@ -1,7 +1,7 @@
-// Split-only ROAM (seed 003 sec. 5): tessellation rate, variance-tree build
+// Split-only ROAM (CMSC 23700 project 2a sec. 5): tessellation rate, variance-tree build
 // and the error-versus-budget curve, on the SRTM tile of Mt Rainier
 // (../shared/data, reprojected by io's load_terrain: 1201^2 padded to 2049^2)
-// and on the 4097^2 demo island. Issue 5 asks for >= 10 million triangles per
+// and on the 4097^2 demo island. The target is >= 10 million triangles per
 // second per core; `items_per_second` is that rate. The quality counters
 // (max / mean projected error in pixels, share of terrain pixels whose depth
 // is within 5 % of the full-resolution mesh) are per budget.

@@ -1,4 +1,4 @@
-// Out-of-core rendering of a tile directory (issue 6; Zamri, seed 001,
+// Out-of-core rendering of a tile directory (Zamri,
 // "Run-Time Processing"): a flight across a terrain larger than the memory
 // bound, each frame selecting and culling the tiles around the viewer,
 // reading the missing tiles lazily, far ones at reduced levels, into the LRU
@@ -72,10 +72,7 @@ void BM_TileStream(benchmark::State& state) {
         if (x > 0.9 * t.width()) x = 0.1 * t.width();
         cam.eye = {x, t.height_bilinear(float(x), float(z)) + 300.0, z};
         const TileFrameStats s = tiles.build_mesh(cam, 1.0, mesh);
-        MethodOutput out;
-        out.kind = MethodOutputKind::Mesh;
-        out.mesh = &mesh;
-        gl.render(out, cam, overview.environment, {}, color, nullptr);
+        gl.render(MethodOutput::of_mesh(mesh), cam, overview.environment, {}, color, nullptr);
         triangles += double(s.triangles);
         loaded += s.loaded;
         evicted += s.evicted;

@@ -1,4 +1,4 @@
-// libFuzzer harness for the `map` TOML parser (seed 003, sec. 6.1; DESIGN sec.
+// libFuzzer harness for the `map` TOML parser (CMSC 23700 project 2a, sec. 6.1; DESIGN sec.
 // 4, 5): any text must parse or throw overflight::Error, and what parses must
 // format and parse back.
 #include "core/Error.h"

@@ -1,5 +1,5 @@
 // libFuzzer harness for the 16-bit PGM parser of hovercraft height fields
-// (seed 003, sec. 6.2): any input must parse or throw overflight::Error, never
+// (CMSC 23700 project 2a, sec. 6.2): any input must parse or throw overflight::Error, never
 // crash, read out of bounds or allocate beyond the input's size.
 #include "core/Error.h"
 #include "io/Pnm.h"

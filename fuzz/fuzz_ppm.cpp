@@ -1,4 +1,4 @@
-// libFuzzer harness for the PPM color-map parser (seed 003, sec. 6.3).
+// libFuzzer harness for the PPM color-map parser (CMSC 23700 project 2a, sec. 6.3).
 #include "core/Error.h"
 #include "io/Pnm.h"
 

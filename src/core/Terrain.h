@@ -87,7 +87,7 @@ std::string horizontal_scale_problem(int rows, int cols, double h_scale);
 // kWorldLimit), or an empty string when it is one.
 std::string elevation_problem(double elevation);
 
-// Zamri's rule (seed 001, sec. 3): the smallest 2^n+1 that is >= n.
+// Zamri's rule (Zamri, sec. 3): the smallest 2^n+1 that is >= n.
 int next_pow2_plus1(int n);
 bool is_pow2_plus1(int n);
 

@@ -1,6 +1,6 @@
 #pragma once
-// Per-frame step timings of the `fly` window (issue 7: the HUD shows "ms per
-// step (ray cast or tessellate, uploads, objects)"), the interactive analogue
+// Per-frame step timings of the `fly` window (the HUD shows ms per step: ray cast or
+// tessellate, uploads, objects), the interactive analogue
 // of Szenberg et al. 1997 Table 1 (time of each step of the composite).
 //
 // CPU steps (ray cast, tessellation, buffer fills) are timed by the caller on

@@ -1,4 +1,4 @@
-// Based on: seed 003 sec. 3 (the vehicle and its chase camera) and Szenberg et
+// Based on: CMSC 23700 project 2a sec. 3 (the vehicle and its chase camera) and Szenberg et
 // al. 1997 sec. 5 (objects drawn with the Z-buffer over any terrain).
 #include "gl/FlightVehicle.h"
 

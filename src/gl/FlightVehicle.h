@@ -1,5 +1,5 @@
 #pragma once
-// The hovercraft itself in the chase view of `fly` (seed 003 sec. 3: the
+// The hovercraft itself in the chase view of `fly` (CMSC 23700 project 2a sec. 3: the
 // camera sits behind the vehicle and follows it): ObjectGeometry's built-in
 // `vehicle` shape, built once, placed every frame where the simulation put the
 // vehicle, hovering just above the ground and tilted to the local slope so

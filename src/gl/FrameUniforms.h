@@ -4,7 +4,7 @@
 // sun, fog and sky of the data set's Environment, and the terrain grid.
 //
 // Based on: Szenberg et al. 1997 sec. 5.1 (the OpenGL camera of the ray
-// caster) and the hovercraft handout (seed 003: sun lighting, GL_EXP fog, sky).
+// caster) and the hovercraft handout (CMSC 23700 project 2a: sun lighting, GL_EXP fog, sky).
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "gl/GlProgram.h"

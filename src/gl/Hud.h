@@ -1,9 +1,9 @@
 #pragma once
-// The heads-up display of the `fly` window (issue 7): fps, ms per frame, per
+// The heads-up display of the `fly` window: fps, ms per frame, per
 // rendering step (ray cast or tessellate, uploads, objects: FlightStepTimer)
 // and per physics step, triangles, method and level of detail, vehicle
 // position, speed and heading, and the fog / lighting / wireframe toggles of
-// seed 003 sec. 3.1. Drawn with Dear ImGui (Debian's libimgui + its GLFW and
+// CMSC 23700 project 2a sec. 3.1. Drawn with Dear ImGui (Debian's libimgui + its GLFW and
 // OpenGL 3 backends).
 #include "gl/FlightTimer.h"
 

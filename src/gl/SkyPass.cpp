@@ -1,4 +1,4 @@
-// Based on: seed 003 (skybox) and DESIGN sec. 2 (camera rays).
+// Based on: CMSC 23700 project 2a (skybox) and DESIGN sec. 2 (camera rays).
 #include "gl/SkyPass.h"
 
 namespace overflight::gl {

@@ -6,7 +6,7 @@
 // no depth, so the sky keeps window depth 1.0 (nothing hit). The ray caster
 // paints its sky pixels with the same formula so both images agree.
 //
-// Based on: the hovercraft handout (seed 003, skybox) and DESIGN sec. 2 (rays).
+// Based on: the hovercraft handout (CMSC 23700 project 2a, skybox) and DESIGN sec. 2 (rays).
 #include "gl/GlProgram.h"
 
 namespace overflight::gl {

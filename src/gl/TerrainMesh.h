@@ -12,7 +12,7 @@
 //
 // Based on: Szenberg et al. 1997 sec. 3 and 7 (terrain drawn by OpenGL's
 // Z-buffer as the baseline of the ray caster), DESIGN sec. 3 (`mesh`), the
-// ROAM bintree diagonal pattern (seed 003).
+// ROAM bintree diagonal pattern (CMSC 23700 project 2a).
 #include "core/Terrain.h"
 #include "gl/GlProgram.h"
 

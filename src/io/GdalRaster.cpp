@@ -1,4 +1,4 @@
-// Based on: Zamri (seed 001), sec. 3 (USGS DEM ingestion); DESIGN sec. 4
+// Based on: Zamri, sec. 3 (USGS DEM ingestion); DESIGN sec. 4
 // (rasters through GDAL: metric reprojection at native resolution, no-data
 // filling, float/negative elevations mapped to 16 bits, color rasters warped
 // onto the DEM grid, elevation ramp with hill shading otherwise).
@@ -135,7 +135,7 @@ constexpr int kMaxSide = 65537;
 // GDAL's own buffers.
 constexpr double kLoadBytesPerSample = 16;
 
-// Record A of a USGS DEM is its first 1024-byte record (seed 001, sec. 3).
+// Record A of a USGS DEM is its first 1024-byte record (Zamri, sec. 3).
 std::string usgs_record_a_text(const std::string& path) {
     std::string head(1024, ' ');
     if (FILE* f = std::fopen(path.c_str(), "rb")) {

@@ -2,7 +2,7 @@
 // Any raster GDAL reads as a terrain (DESIGN sec. 4): USGS ASCII DEM,
 // GeoTIFF, SRTM .hgt, VTP .bt, ESRI ASCII grid, PNG height maps, ...
 //
-// Based on: Zamri (seed 001), sec. 3 (USGS DEM ingestion: Record A header,
+// Based on: Zamri, sec. 3 (USGS DEM ingestion: Record A header,
 // elevation profiles); DESIGN sec. 4 (reprojection, no-data, 16-bit mapping).
 #include "core/DataSet.h"
 

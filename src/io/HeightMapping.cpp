@@ -1,5 +1,5 @@
 // Based on: DESIGN sec. 4 (float or negative DEMs map to 16 bits with the
-// mapping recorded); seed 003 sec. 6.2 (16-bit height field with a vertical scale).
+// mapping recorded); CMSC 23700 project 2a sec. 6.2 (16-bit height field with a vertical scale).
 #include "io/HeightMapping.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Based on: CMSC 23700 project 2a (seed 003), sec. 6 (data set directory,
+// Based on: CMSC 23700 project 2a, sec. 6 (data set directory,
 // 16-bit PGM height field, PPM with one color per grid square).
 #include "io/HovercraftDataSet.h"
 

@@ -1,9 +1,9 @@
 #pragma once
-// The hovercraft data set (seed 003, sec. 6; DESIGN sec. 4): a directory
+// The hovercraft data set (CMSC 23700 project 2a, sec. 6; DESIGN sec. 4): a directory
 // holding `map` (TOML, MapFile.h), `hf.pgm` (16-bit PGM height field, side
 // 2^N+1 by convention) and `color.ppm` (one pixel per grid cell).
 //
-// Based on: CMSC 23700 project 2a (seed 003), sec. 6.1-6.3.
+// Based on: CMSC 23700 project 2a, sec. 6.1-6.3.
 #include "core/DataSet.h"
 
 #include <string>

@@ -1,4 +1,4 @@
-// Based on: CMSC 23700 project 2a (seed 003), sec. 6.1 (map file: scales,
+// Based on: CMSC 23700 project 2a, sec. 6.1 (map file: scales,
 // lighting, vehicle start, objects), sec. 4 (sun light, GL_EXP fog); DESIGN sec. 4, 5.
 #include "io/MapFile.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// The `map` file of a hovercraft data set (seed 003, sec. 6.1; DESIGN sec. 4),
+// The `map` file of a hovercraft data set (CMSC 23700 project 2a, sec. 6.1; DESIGN sec. 4),
 // written in TOML:
 //
 //     h_scale = 10.0            # required: metres between samples

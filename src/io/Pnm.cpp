@@ -1,4 +1,4 @@
-// Based on: CMSC 23700 project 2a (seed 003), sec. 6.2 (16-bit PGM height
+// Based on: CMSC 23700 project 2a, sec. 6.2 (16-bit PGM height
 // field) and 6.3 (PPM color, one pixel per grid cell); Netpbm P5/P6 layout.
 #include "io/Pnm.h"
 

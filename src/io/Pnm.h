@@ -1,9 +1,9 @@
 #pragma once
 // Netpbm grey maps (PGM, P5) and pixmaps (PPM, P6), the file formats of the
-// hovercraft data set (seed 003, sec. 6.2 and 6.3): `hf.pgm` holds 16-bit
+// hovercraft data set (CMSC 23700 project 2a, sec. 6.2 and 6.3): `hf.pgm` holds 16-bit
 // heights, `color.ppm` one RGB pixel per grid cell.
 //
-// Based on: CMSC 23700 project 2a (seed 003), sec. 6; the Netpbm format
+// Based on: CMSC 23700 project 2a, sec. 6; the Netpbm format
 // specification (binary rasters; a maxval above 255 means two bytes per
 // sample, most significant byte first).
 #include "core/Image.h"

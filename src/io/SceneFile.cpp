@@ -1,4 +1,4 @@
-// Based on: DESIGN sec. 5 (scene files); Szenberg et al. 1997 (seed 000),
+// Based on: DESIGN sec. 5 (scene files); Szenberg et al. 1997 (Szenberg et al. 1997),
 // sec. 6: polygonal objects (houses, vehicles, transmission lines) on the terrain.
 #include "io/SceneFile.h"
 

@@ -1,6 +1,6 @@
 // Based on: DESIGN sec. 5 (objects: box, house, vehicle, tower, model, and
-// transmission lines), the objects of Szenberg et al. 1997 (seed 000, sec. 6:
-// houses, vehicles, transmission lines) and the hovercraft `map` file (seed 003, sec. 6.1).
+// transmission lines), the objects of Szenberg et al. 1997 (Szenberg et al. 1997, sec. 6:
+// houses, vehicles, transmission lines) and the hovercraft `map` file (CMSC 23700 project 2a, sec. 6.1).
 #include "io/SceneToml.h"
 
 #include "core/Error.h"

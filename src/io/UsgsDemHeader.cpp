@@ -1,4 +1,4 @@
-// Based on: USGS DEM Standards Part 2 (1992), Record A; Zamri (seed 001), sec. 3.
+// Based on: USGS DEM Standards Part 2 (1992), Record A; Zamri, sec. 3.
 #include "io/UsgsDemHeader.h"
 
 #include <algorithm>

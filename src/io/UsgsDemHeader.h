@@ -1,11 +1,11 @@
 #pragma once
 // The Record A header of a USGS ASCII DEM: the "general information" Zamri
-// extracts before reading the elevation profiles (seed 001, sec. 3: ground
+// extracts before reading the elevation profiles (Zamri, sec. 3: ground
 // coordinates of the corners, minimum and maximum elevation, rows and
 // columns). GDAL's USGSDEM driver reads the profiles but exposes few of these
 // fields, so `overflight info` reads them here.
 //
-// Based on: Zamri (seed 001), sec. 3 (data extraction from Record A); USGS
+// Based on: Zamri, sec. 3 (data extraction from Record A); USGS
 // National Mapping Program Technical Instructions, Standards for Digital
 // Elevation Models, Part 2 (1992), Record A data elements 1-18 (fixed columns).
 #include <string>

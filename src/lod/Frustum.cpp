@@ -1,4 +1,4 @@
-// Based on: Gribb & Hartmann 2001 (plane extraction); Zamri, seed 001,
+// Based on: Gribb & Hartmann 2001 (plane extraction); Zamri,
 // "Run-Time Processing", Fig. 4.1 (plane / bounding-sphere test).
 #include "lod/Frustum.h"
 

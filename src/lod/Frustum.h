@@ -3,7 +3,7 @@
 //
 // Based on: Gribb & Hartmann, "Fast Extraction of Viewing Frustum Planes from
 // the World-View-Projection Matrix" (2001), and Zamri, "Real-time terrain
-// rendering and visualization based on hierarchical method" (seed 001,
+// rendering and visualization based on hierarchical method" (Zamri,
 // "Run-Time Processing"): combine projection x modelview, extract the six
 // planes, normalise them, then test each tile's bounding sphere (Fig. 4.1).
 //

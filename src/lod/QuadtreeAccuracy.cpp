@@ -1,4 +1,4 @@
-// Based on: Zamri, seed 001 ("Results", accuracy against full resolution);
+// Based on: Zamri ("Results", accuracy against full resolution);
 // DESIGN sec. 2 (window depth) and sec. 3 (full-resolution mesh).
 #include "lod/QuadtreeAccuracy.h"
 

@@ -2,10 +2,10 @@
 // Zamri's fidelity measure for the quadtree renderer, computed on the CPU so
 // it needs no GPU: render the depth of the simplified mesh and of the
 // full-resolution mesh with the shared camera, and count the terrain pixels
-// whose view depth agrees within a tolerance (Zamri, seed 001, "Results":
+// whose view depth agrees within a tolerance (Zamri, "Results":
 // 95.34 % of the full resolution data kept).
 //
-// Based on: Zamri, seed 001 ("Results"); the full mesh is DESIGN sec. 3
+// Based on: Zamri ("Results"); the full mesh is DESIGN sec. 3
 // `mesh` (two triangles per cell, diagonals alternating as in the binary
 // triangle tree); depth is DESIGN sec. 2 window depth.
 #include "core/Camera.h"

@@ -1,4 +1,4 @@
-// Based on: seed 003 sec. 5 and 5.1 (split-only ROAM, forced splits of Fig. 5,
+// Based on: CMSC 23700 project 2a sec. 5 and 5.1 (split-only ROAM, forced splits of Fig. 5,
 // priority buckets, view wedge, vehicle focus); Duchaineau et al. 1997 sec. 4,
 // 6 and 7.
 #include "lod/RoamMesh.h"

@@ -5,7 +5,7 @@
 // base neighbour, after first splitting that neighbour when it is coarser
 // (forced splits, recursively), so the mesh is always conforming.
 //
-// Based on: CMSC 23700 project 2a (seed 003) sec. 5 and 5.1, after
+// Based on: CMSC 23700 project 2a sec. 5 and 5.1, after
 // Duchaineau et al., "ROAMing terrain: real-time optimally adapting meshes",
 // IEEE Visualization 1997, sec. 4 (forced splits, Fig. 5), sec. 6 (nested
 // error bounds) and sec. 7 (priority queue of buckets). The bintree layout is
@@ -35,7 +35,7 @@
 // color are packed at construction into one 8-byte record, so writing a
 // vertex touches one cache line instead of the four rows and the color plane.
 //
-// Speed (issue 5: >= 10 M triangles/s per core). The rebuild is bound by
+// Speed (the target: >= 10 M triangles/s per core). The rebuild is bound by
 // cache misses on the nodes it touches at random (the popped triangle, its
 // base neighbour and the outer neighbours it relinks), so a node is 32 bytes
 // and the two children of a split share one 64-byte line; the queue keeps no

@@ -1,4 +1,4 @@
-// Based on: seed 003 sec. 5 (variance tree), Duchaineau et al. 1997 sec. 6.
+// Based on: CMSC 23700 project 2a sec. 5 (variance tree), Duchaineau et al. 1997 sec. 6.
 #include "lod/RoamVarianceTree.h"
 
 #include "core/Error.h"

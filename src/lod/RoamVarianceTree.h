@@ -5,7 +5,7 @@
 // all its descendants. It is computed once per terrain; the per-frame
 // tessellation (RoamMesh) divides it by distance to get a screen-space error.
 //
-// Based on: CMSC 23700 project 2a (seed 003) sec. 5 and 5.1 ("compute a
+// Based on: CMSC 23700 project 2a sec. 5 and 5.1 ("compute a
 // variance tree that contains the world-space variance information"), after
 // Duchaineau et al., "ROAMing terrain", IEEE Visualization 1997, sec. 6
 // (nested world-space bounds, here the scalar hypotenuse-midpoint form).

@@ -1,4 +1,4 @@
-// Based on: seed 003 sec. 5.1 (view wedge in XZ), DESIGN sec. 2 (camera).
+// Based on: CMSC 23700 project 2a sec. 5.1 (view wedge in XZ), DESIGN sec. 2 (camera).
 #include "lod/RoamViewWedge.h"
 
 #include <glm/geometric.hpp>

@@ -3,7 +3,7 @@
 // for ROAM's priorities: a triangle whose footprint lies outside the wedge
 // cannot be seen and gets the minimum priority.
 //
-// Based on: seed 003 sec. 5.1 ("Since the view is mostly horizontal, you can
+// Based on: CMSC 23700 project 2a sec. 5.1 ("Since the view is mostly horizontal, you can
 // approximate the view frustum as a triangle in the XZ plane ... compute the
 // line equations for the sides of the frustum"), with the camera of DESIGN
 // sec. 2. For `shear` every pixel column lies in a vertical plane, so the two

@@ -1,5 +1,5 @@
 // Based on: Röttger, Heidrich, Slusallek, Seidel 1998, sec. 3 (quadtree
-// matrix, criterion f, d2 and its propagation, fans); Zamri, seed 001.
+// matrix, criterion f, d2 and its propagation, fans); Zamri.
 #include "lod/RottgerQuadtree.h"
 
 #include "core/Error.h"

@@ -4,8 +4,7 @@
 // Based on: Röttger, Heidrich, Slusallek, Seidel, "Real-Time Generation of
 // Continuous Levels of Detail for Height Fields" (WSCG 1998), sec. 3 (the
 // quadtree matrix, the subdivision criterion f, the d2 roughness and its
-// upward propagation, triangle fans), as used per tile by Zamri (seed 001,
-// "Run-Time Processing").
+// upward propagation, triangle fans), as used per tile by Zamri ("Run-Time Processing").
 //
 // A patch is (2^k+1)^2 samples. A node is centred on a sample (ci, cj) with
 // half-size h (its corners are (ci+-h, cj+-h)); its children have half-size

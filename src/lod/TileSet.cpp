@@ -1,4 +1,4 @@
-// Based on: Zamri, seed 001, "Data tiling" and "Run-Time Processing"
+// Based on: Zamri, "Data tiling" and "Run-Time Processing"
 // (viewer's tile + neighbours, frustum culling of bounding spheres, Röttger
 // quadtree per tile); LRU caching so a terrain larger than memory renders.
 #include "lod/TileSet.h"

@@ -4,7 +4,7 @@
 // cache of loaded tiles, and one Röttger quadtree per visible tile whose fans
 // are stitched across the seams.
 //
-// Based on: Zamri, seed 001, "Data tiling" (overlapping 2^n+1 tiles sharing
+// Based on: Zamri, "Data tiling" (overlapping 2^n+1 tiles sharing
 // their edge samples, existence flags, one file per tile) and "Run-Time
 // Processing" (the viewer's tile and its 8 neighbours, view-frustum culling
 // of their bounding spheres, Röttger et al. 1998 per tile). Zamri keeps a

@@ -34,13 +34,9 @@ public:
         stats.clear();
         const auto t0 = std::chrono::steady_clock::now();
         stats.tiles = tiles_->build_mesh(view.camera, error_px_, mesh_);
-        stats.steps.push_back(
-            {"refine", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+        stats.add_step_since("refine", t0);
         stats.triangles = (long long)mesh_.triangle_count();
-        MethodOutput out;
-        out.kind = MethodOutputKind::Mesh;
-        out.mesh = &mesh_;
-        return out;
+        return MethodOutput::of_mesh(mesh_);
     }
     void scale_detail(double factor) override {
         error_px_ = std::clamp(error_px_ / factor, MethodSettings::kMinErrorPx, MethodSettings::kMaxErrorPx);

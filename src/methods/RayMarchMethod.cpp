@@ -22,10 +22,9 @@ public:
         env_ = view.environment;
         const auto t0 = std::chrono::steady_clock::now();
         marcher_.render(view.camera, surface_, color_, depth_);
-        stats.steps.push_back(
-            {"raymarch", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+        stats.add_step_since("raymarch", t0);
         stats.rays = (long long)view.camera.width * view.camera.height;
-        return {MethodOutputKind::Images, &color_, &depth_};
+        return MethodOutput::images(color_, depth_);
     }
 
 private:

@@ -20,10 +20,7 @@ public:
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         view.camera.validate();
         stats.clear();
-        MethodOutput out;
-        out.kind = MethodOutputKind::Resident;
-        out.surface = surface_;
-        return out;
+        return MethodOutput::resident(surface_);
     }
 
 private:

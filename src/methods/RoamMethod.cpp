@@ -26,13 +26,9 @@ public:
         const auto t0 = std::chrono::steady_clock::now();
         stats.roam = roam_.tessellate(view.camera, budget_, view.focus);
         roam_.write_mesh(mesh_);
-        stats.steps.push_back(
-            {"tessellate", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+        stats.add_step_since("tessellate", t0);
         stats.triangles = (long long)mesh_.triangle_count();
-        MethodOutput out;
-        out.kind = MethodOutputKind::Mesh;
-        out.mesh = &mesh_;
-        return out;
+        return MethodOutput::of_mesh(mesh_);
     }
     void scale_detail(double factor) override {
         // One step of the sqrt 2 ladder per factor of sqrt 2.

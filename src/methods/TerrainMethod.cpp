@@ -14,6 +14,31 @@ const char* to_string(ResidentSurface s) {
     return "mesh";
 }
 
+MethodOutput MethodOutput::images(const ColorImage& color, const DepthImage& depth) {
+    MethodOutput out;
+    out.color = &color;
+    out.depth = &depth;
+    return out;
+}
+
+MethodOutput MethodOutput::of_mesh(const MeshArrays& mesh) {
+    MethodOutput out;
+    out.kind = MethodOutputKind::Mesh;
+    out.mesh = &mesh;
+    return out;
+}
+
+MethodOutput MethodOutput::resident(ResidentSurface surface) {
+    MethodOutput out;
+    out.kind = MethodOutputKind::Resident;
+    out.surface = surface;
+    return out;
+}
+
+void MethodStats::add_step_since(const char* name, std::chrono::steady_clock::time_point start) {
+    steps.push_back({name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
+}
+
 void MethodStats::clear() {
     steps.clear();
     triangles = 0;

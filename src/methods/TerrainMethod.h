@@ -28,6 +28,7 @@
 
 #include <glm/vec2.hpp>
 
+#include <chrono>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ struct MethodOutput {
     const DepthImage* depth = nullptr; // Images: window depth for the camera's near/far
     const MeshArrays* mesh = nullptr;  // Mesh: world coordinates
     ResidentSurface surface = ResidentSurface::Mesh; // Resident
+
+    static MethodOutput images(const ColorImage& color, const DepthImage& depth);
+    static MethodOutput of_mesh(const MeshArrays& mesh);
+    static MethodOutput resident(ResidentSurface surface);
 };
 
 // What a method sees of a frame.
@@ -74,6 +79,8 @@ struct MethodStats {
     std::optional<TileFrameStats> tiles;  // the quadtree over tiles
     // Clears the frame's figures; keeps the steps' storage (no allocation per frame).
     void clear();
+    // Adds the step `name` (a string literal) lasting from `start` to now.
+    void add_step_since(const char* name, std::chrono::steady_clock::time_point start);
     double step_ms(const char* name) const; // 0 when absent
 };
 

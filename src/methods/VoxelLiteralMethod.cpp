@@ -23,7 +23,7 @@ public:
         render_floating_horizon_literal(terrain_, view.environment, view.camera, options_.surface, color_, depth_, &s);
         stats.steps.push_back({"raycast", s.ms_total});
         stats.raycast = s;
-        return {MethodOutputKind::Images, &color_, &depth_};
+        return MethodOutput::images(color_, depth_);
     }
 
 private:

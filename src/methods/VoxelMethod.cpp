@@ -22,7 +22,7 @@ public:
         caster_.render(view.camera, view.environment, options_, color_, depth_, &s);
         stats.steps.push_back({"raycast", s.ms_total});
         stats.raycast = s;
-        return {MethodOutputKind::Images, &color_, &depth_};
+        return MethodOutput::images(color_, depth_);
     }
 
 private:

@@ -1,4 +1,4 @@
-// Based on: seed 003 (GL_EXP fog, sky), Szenberg 1997 sec. 5. See Atmosphere.h.
+// Based on: CMSC 23700 project 2a (GL_EXP fog, sky), Szenberg 1997 sec. 5. See Atmosphere.h.
 #include "raycast/Atmosphere.h"
 
 #include <glm/geometric.hpp>

@@ -2,7 +2,7 @@
 // Sky and fog shared by every terrain ray caster (fast, literal, reference),
 // so that voxel images match the mesh renderers pixel for pixel.
 //
-// Based on: the hovercraft project (seed 003), "GL_EXP fog and skybox", and
+// Based on: the hovercraft project (CMSC 23700 project 2a), "GL_EXP fog and skybox", and
 // Szenberg 1997 sec. 5 (the ray-cast image is composited with GL primitives,
 // so fog must be computed the way a GL fragment shader computes it).
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Based on: CMSC 23700 project 2a (seed 003) sec. 3.2, last paragraph: the
+// Based on: CMSC 23700 project 2a sec. 3.2, last paragraph: the
 // camera follows the vehicle; looking parallel to the XZ plane "can leave you
 // staring at steep slopes", a look-at point ahead "can be quite jerky", so the
 // change in view direction is damped. Here the eye sits behind and above the

@@ -1,5 +1,5 @@
 #pragma once
-// Based on: CMSC 23700 project 2a (seed 003) sec. 3.2: "We recompute the state
+// Based on: CMSC 23700 project 2a sec. 3.2: "We recompute the state
 // of the vehicle one hundred times per second", whatever the frame rate. The
 // fixed-step time accumulator ("Fix your timestep", G. Fiedler 2004): frame
 // time is added to an accumulator and drained in whole physics steps, so the

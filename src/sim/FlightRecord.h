@@ -8,7 +8,7 @@
 //
 // frame: 0, 1, 2, ... in order; time: seconds since the start; eye_*, heading,
 // pitch: the camera (degrees); x, z, velocity, vehicle_heading: the hovercraft
-// state (seed 003 sec. 3.2); the last four columns are 0/1 for the vehicle keys
+// state (CMSC 23700 project 2a sec. 3.2); the last four columns are 0/1 for the vehicle keys
 // held in that frame. Numbers are written in shortest round-trip form
 // (std::to_chars), so parse(format(r)) == r bit for bit. Lines starting with
 // '#' and blank lines are ignored. File I/O lives in io/FlightRecordFile.h.

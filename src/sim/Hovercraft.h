@@ -1,5 +1,5 @@
 #pragma once
-// Based on: CMSC 23700 project 2a, "sports utility hovercraft" (seed 003),
+// Based on: CMSC 23700 project 2a, "sports utility hovercraft" (CMSC 23700 project 2a),
 // sec. 3.2 (the physics model), with its constants and both of its slope
 // methods. The vehicle state is the paper's triple (p, v, h): position in the
 // X-Z plane, speed along the heading, heading in degrees (DESIGN sec. 1:
@@ -20,7 +20,7 @@ enum class SlopeMethod {
 
 const char* to_string(SlopeMethod m);
 
-// The constants of seed 003 sec. 3.2 ("b = 0.6, f0 = 6e-4, ..."). World units
+// The constants of CMSC 23700 project 2a sec. 3.2 ("b = 0.6, f0 = 6e-4, ..."). World units
 // are taken to be metres, as the paper's are.
 struct HovercraftParams {
     double step = 0.01;          // seconds per step (100 Hz)
@@ -43,7 +43,7 @@ struct HovercraftState {
     double heading = 0;    // h in degrees, kept in [0, 360)
 };
 
-// Unit slope vector s(p, h) of seed 003 sec. 3.2 at world (x, z) for heading h
+// Unit slope vector s(p, h) of CMSC 23700 project 2a sec. 3.2 at world (x, z) for heading h
 // (degrees). Its horizontal part points along (sin h, cos h); its y is the rise
 // per unit of horizontal travel, normalised with it. Ahead: the bilinear height
 // `probe` units ahead minus the height at p. TriangleNormal: the gradient of the
@@ -59,7 +59,7 @@ glm::dvec3 slope_vector(const Terrain& terrain, double x, double z, double headi
 double mesh_height(const Terrain& terrain, double x, double z);
 
 // The ground the vehicle rides on: the bilinear surface (Terrain::height_bilinear,
-// seed 003 footnote 2 "2 meters above the terrain"), raised to the mesh triangle
+// CMSC 23700 project 2a footnote 2 "2 meters above the terrain"), raised to the mesh triangle
 // where that is higher. On steep cells the two surfaces differ by more than the
 // 2 m altitude (up to a quarter of the cell's twist h00 - h01 - h10 + h11), and
 // the mesh is what the mesh/ROAM/quadtree renderers draw, so riding on the
@@ -71,7 +71,7 @@ double wrap_heading(double degrees);
 
 // The simulated vehicle on one terrain. The terrain must outlive it.
 //
-// Map edge: the vehicle BOUNCES (seed 003 leaves teleport-or-bounce open): a
+// Map edge: the vehicle BOUNCES (CMSC 23700 project 2a leaves teleport-or-bounce open): a
 // step that would leave X in [0, width] or Z in [0, depth] is mirrored at the
 // edge and the heading is reflected (h -> -h at the west/east edges,
 // h -> 180 - h at the north/south edges); speed is kept. The vehicle rides
@@ -84,7 +84,7 @@ public:
     Hovercraft(const Terrain& terrain, double x, double z, double heading,
                const HovercraftParams& params = {});
 
-    // One 10 ms step of seed 003 sec. 3.2:
+    // One 10 ms step of CMSC 23700 project 2a sec. 3.2:
     //   a = max(0, 8 - v^2/16),  f = f0 + f1 v + f2 v^2,  g = (0, 9.8, 0) . s(p, h)
     //   v' = v - 0.01 (f + g)
     //   v_{i+1} = max(0, v' + 0.01 a [accelerating] - 0.01 b [braking])

@@ -1,5 +1,5 @@
 #pragma once
-// Based on: CMSC 23700 project 2a, "sports utility hovercraft" (seed 003),
+// Based on: CMSC 23700 project 2a, "sports utility hovercraft" (CMSC 23700 project 2a),
 // sec. 3.1 (controls) and its footnote 1: the arrow keys are SAMPLED by the
 // 100 Hz physics rather than acted on per event, and "any transient keystroke
 // gets sampled at least once in the physics model". KeyState is that sampler:
@@ -11,7 +11,7 @@
 
 namespace overflight {
 
-// Every key the viewer reacts to (seed 003 sec. 3.1 plus the issue's Tab, P, H).
+// Every key the viewer reacts to (CMSC 23700 project 2a sec. 3.1 plus the issue's Tab, P, H).
 // The first four are sampled by the physics; the rest are one-shot commands.
 enum class Key : std::uint8_t {
     Accelerate, // UP arrow

@@ -1,4 +1,4 @@
-// The chase camera of seed 003 sec. 3.2 (last paragraph): behind and above the
+// The chase camera of CMSC 23700 project 2a sec. 3.2 (last paragraph): behind and above the
 // vehicle, aimed at a point ahead, with exponentially damped pitch.
 #include "core/Terrain.h"
 #include "sim/ChaseCamera.h"

@@ -1,5 +1,5 @@
-// Sampled keys (seed 003 sec. 3.1 and footnote 1), scripted presses (DESIGN
-// sec. 6 --press) and the 100 Hz fixed-step clock (seed 003 sec. 3.2).
+// Sampled keys (CMSC 23700 project 2a sec. 3.1 and footnote 1), scripted presses (DESIGN
+// sec. 6 --press) and the 100 Hz fixed-step clock (CMSC 23700 project 2a sec. 3.2).
 #include "core/Error.h"
 #include "core/Terrain.h"
 #include "sim/FixedStepClock.h"

@@ -1,4 +1,4 @@
-// Hovercraft physics of seed 003 sec. 3.2 on height fields small enough to work
+// Hovercraft physics of CMSC 23700 project 2a sec. 3.2 on height fields small enough to work
 // the expected values out by hand, plus the map-edge and surface properties on
 // the demo island.
 #include "core/DemoIsland.h"

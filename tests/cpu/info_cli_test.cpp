@@ -1,4 +1,4 @@
-// Hovercraft data sets (seed 003, sec. 6) through the library and through
+// Hovercraft data sets (CMSC 23700 project 2a, sec. 6) through the library and through
 // `overflight info`, and the one-line error of each bad data set (DESIGN sec. 6).
 #include "TestSupport.h"
 #include "core/Error.h"

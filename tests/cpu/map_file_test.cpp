@@ -1,4 +1,4 @@
-// The hovercraft `map` file in TOML (seed 003, sec. 6.1; DESIGN sec. 4, 5):
+// The hovercraft `map` file in TOML (CMSC 23700 project 2a, sec. 6.1; DESIGN sec. 4, 5):
 // values, defaults, a round trip, and one test per bad input.
 #include "TestSupport.h"
 #include "core/Error.h"

@@ -1,4 +1,4 @@
-// PGM/PPM parsing and writing (seed 003, sec. 6.2-6.3): literals worked out by
+// PGM/PPM parsing and writing (CMSC 23700 project 2a, sec. 6.2-6.3): literals worked out by
 // hand from the Netpbm layout, round trips, and each malformed input.
 #include "TestSupport.h"
 #include "core/Error.h"

@@ -1,6 +1,6 @@
 // ROAM against the full-resolution mesh (DESIGN sec. 8: "full-resolution
 // meshes for the LOD renderers"): at 64k triangles the view depth agrees
-// within 5 % on at least 90 % of the terrain pixels (issue 5). Depth of both
+// within 5 % on at least 90 % of the terrain pixels (the ROAM target). Depth of both
 // meshes comes from the CPU reference rasteriser (lod/QuadtreeAccuracy.h).
 #include "core/DemoIsland.h"
 #include "lod/QuadtreeAccuracy.h"

@@ -1,4 +1,4 @@
-// Split-only ROAM tessellation (seed 003 sec. 5, 5.1): conforming meshes,
+// Split-only ROAM tessellation (CMSC 23700 project 2a sec. 5, 5.1): conforming meshes,
 // the triangle budget, nested errors, the view wedge, the focus point, padding.
 #include "core/Error.h"
 #include "core/Terrain.h"

@@ -1,4 +1,4 @@
-// ROAM variance tree (seed 003 sec. 5) and view wedge (sec. 5.1) on
+// ROAM variance tree (CMSC 23700 project 2a sec. 5) and view wedge (sec. 5.1) on
 // hand-checkable literals.
 #include "core/Error.h"
 #include "core/Terrain.h"

@@ -1,4 +1,4 @@
-// Rasters through GDAL (DESIGN sec. 4; Zamri, seed 001, sec. 3): every file of
+// Rasters through GDAL (DESIGN sec. 4; Zamri, sec. 3): every file of
 // ../shared/data with the size and elevation range its README gives, small
 // DEMs made here (feet, float, negative, no-data) with values worked by hand,
 // and the writers.
@@ -55,7 +55,7 @@ TEST(SharedData, SainteHelensUsgsDem) {
     EXPECT_FALSE(d.info.reprojected);
     EXPECT_NE(d.info.crs.find("UTM zone 10N"), std::string::npos) << d.info.crs;
     EXPECT_EQ(d.info.driver, "USGSDEM");
-    // Record A (seed 001, sec. 3).
+    // Record A (Zamri, sec. 3).
     EXPECT_EQ(metadata(d, "USGS_PROFILES"), "327");
     EXPECT_EQ(metadata(d, "USGS_MIN_ELEVATION"), "682");
     EXPECT_EQ(metadata(d, "USGS_MAX_ELEVATION"), "2543");

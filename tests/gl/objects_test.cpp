@@ -68,8 +68,8 @@ Frame with_objects(gl::HeadlessRenderer& r, const char* method, const Camera& ca
     Frame f;
     const Environment& env = demo().environment;
     if (raycast) {
-        const MethodOutput out{MethodOutputKind::Images, &raycast->color, &raycast->depth};
-        r.render(out, cam, env, {}, f.color, read_depth ? &f.depth : nullptr);
+        r.render(MethodOutput::images(raycast->color, raycast->depth), cam, env, {}, f.color,
+                 read_depth ? &f.depth : nullptr);
     } else {
         const MethodSettings settings;
         const std::unique_ptr<TerrainMethod> m = find_terrain_method(method)->create({demo().terrain, settings, {}});
@@ -238,9 +238,7 @@ TEST(GlObjects, CablesSagAsSpecifiedInTheImage) {
     cam.near = 1;
     cam.far = 2000;
     Frame f;
-    MethodOutput mesh;
-    mesh.kind = MethodOutputKind::Resident;
-    r.render(mesh, cam, d.environment, {}, f.color, nullptr);
+    r.render(MethodOutput::resident(ResidentSurface::Mesh), cam, d.environment, {}, f.color, nullptr);
     const auto dark = [&](int c, int row) { const Rgb8 p = f.color.at(c, row); return p.r < 60 && p.g < 60 && p.b < 60; };
     const double arm = gl::tower_arm(line.height);
     for (double side : {-arm, 0.0, arm}) {

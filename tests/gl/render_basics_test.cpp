@@ -160,13 +160,6 @@ TEST(GlProjection, RandomPointsLandOnTheCorePixelWithTheRaycasterDepth) {
     }
 }
 
-MethodOutput resident(ResidentSurface surface) {
-    MethodOutput out;
-    out.kind = MethodOutputKind::Resident;
-    out.surface = surface;
-    return out;
-}
-
 TEST(Compositor, FlatTerrainDepthAndLightAreExactForMeshAndBlocks) {
     DataSet data = flat_terrain();
     gl::HeadlessRenderer renderer(data.terrain, Scene{});
@@ -174,7 +167,7 @@ TEST(Compositor, FlatTerrainDepthAndLightAreExactForMeshAndBlocks) {
     for (ResidentSurface m : {ResidentSurface::Mesh, ResidentSurface::TopFaces, ResidentSurface::Blocks}) {
         ColorImage color;
         DepthImage depth;
-        renderer.render(resident(m), cam, data.environment, {}, color, &depth);
+        renderer.render(MethodOutput::resident(m), cam, data.environment, {}, color, &depth);
         int checked = 0;
         for (int row = 0; row < cam.height; row += 3)
             for (int col = 0; col < cam.width; col += 3) {
@@ -206,7 +199,7 @@ TEST(Compositor, FogAndSkyFollowTheStatedFormulas) {
     cam.eye.y = 110;
     ColorImage color;
     DepthImage depth;
-    renderer.render(resident(ResidentSurface::Mesh), cam, data.environment, {}, color, &depth);
+    renderer.render(MethodOutput::resident(ResidentSurface::Mesh), cam, data.environment, {}, color, &depth);
     // Sky pixel: s = sin(elevation) of the pixel-centre ray.
     const int col = 40, sky_row = 3;
     const glm::dvec3 dir = glm::normalize(cam.ray(cam.u_of(col), cam.v_of(sky_row)));
