@@ -27,6 +27,7 @@ void HeadlessRenderer::render(const MethodOutput& out, const Camera& camera, con
     context_->make_current();
     if (!target_ || target_->width() != camera.width || target_->height() != camera.height)
         target_ = std::make_unique<RenderTarget>(camera.width, camera.height);
+    // Uploads of a resident representation finish before the first timed step.
     if (out.kind == MethodOutputKind::Resident) compositor_->prepare(out.surface);
     CompositeOptions o = options;
     o.full_depth = o.full_depth || depth != nullptr;
