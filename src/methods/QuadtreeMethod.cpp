@@ -34,7 +34,7 @@ public:
         stats.clear();
         const auto t0 = std::chrono::steady_clock::now();
         stats.tiles = tiles_->build_mesh(view.camera, error_px_, mesh_);
-        stats.add_step_since("refine", t0);
+        stats.add_step_since("quadtree", t0); // select, load, refine and fans together
         stats.triangles = (long long)mesh_.triangle_count();
         return MethodOutput::of_mesh(mesh_);
     }
