@@ -19,17 +19,19 @@ namespace overflight::test {
 // AddressSanitizer reserves terabytes of address space for its shadow
 // memory, so a program built with it (the sanitizer build of the tests and of
 // `overflight`) cannot even start under RLIMIT_AS.
+// Tests that need the limit exist only in builds without it (the Release run
+// holds them; CI fails on a skipped test, so they are left out, not skipped).
 #if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kAddressSpaceCanBeLimited = false;
+#define OVERFLIGHT_ADDRESS_SPACE_CAN_BE_LIMITED 0
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
-inline constexpr bool kAddressSpaceCanBeLimited = false;
-#else
-inline constexpr bool kAddressSpaceCanBeLimited = true;
+#define OVERFLIGHT_ADDRESS_SPACE_CAN_BE_LIMITED 0
 #endif
-#else
-inline constexpr bool kAddressSpaceCanBeLimited = true;
 #endif
+#ifndef OVERFLIGHT_ADDRESS_SPACE_CAN_BE_LIMITED
+#define OVERFLIGHT_ADDRESS_SPACE_CAN_BE_LIMITED 1
+#endif
+inline constexpr bool kAddressSpaceCanBeLimited = OVERFLIGHT_ADDRESS_SPACE_CAN_BE_LIMITED;
 
 struct Restrictions {
     // RLIMIT_AS of the child; 0, or !kAddressSpaceCanBeLimited: unlimited.
