@@ -48,13 +48,16 @@ inline std::string slurp(const std::string& path) {
 
 // As run_overflight, in a forked child that applies `limits` before exec. The
 // exit code of a child killed by a signal is 128 + the signal.
-inline RunResult run_overflight_restricted(const std::string& args, const Restrictions& limits) {
+// `exe`: the program to run (default the build's `overflight`; as `nobody`,
+// a copy in a folder that user can enter, since the build tree may not be).
+inline RunResult run_overflight_restricted(const std::string& args, const Restrictions& limits,
+                                           const std::string& exe = OVERFLIGHT_EXE) {
     const auto dir = std::filesystem::temp_directory_path();
     const std::string out_file = dir / ("overflight-rr-out-" + std::to_string(::getpid()));
     const std::string err_file = dir / ("overflight-rr-err-" + std::to_string(::getpid()));
     const int out = ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
     const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-    const std::string cmd = std::string("exec '") + OVERFLIGHT_EXE + "' " + args;
+    const std::string cmd = "exec '" + exe + "' " + args;
     const passwd* nobody = limits.unprivileged && ::geteuid() == 0 ? ::getpwnam("nobody") : nullptr;
     RunResult r;
     const pid_t pid = ::fork();

@@ -184,11 +184,14 @@ TEST(UntrustedRaster, UnreadableFileIsPermissionDenied) {
     write_geotiff(open, Image2D<float>(3, 3, 5.0f));
     ::chmod(locked.c_str(), 0);
     ::chmod(open.c_str(), 0644);
+    // `nobody` may not enter the build tree (a clone under a 0700 folder): run a copy from here.
+    const std::string exe = dir / "overflight";
+    std::filesystem::copy_file(OVERFLIGHT_EXE, exe);
     const Restrictions as_user{0, true};
-    const test::RunResult r = run_overflight_restricted("info '" + locked + "'", as_user);
+    const test::RunResult r = run_overflight_restricted("info '" + locked + "'", as_user, exe);
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "overflight: " + locked + ": permission denied\n");
-    const test::RunResult ok = run_overflight_restricted("info '" + open + "'", as_user);
+    const test::RunResult ok = run_overflight_restricted("info '" + open + "'", as_user, exe);
     EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
 
