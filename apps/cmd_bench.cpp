@@ -6,11 +6,14 @@
 // (CMSC 23700 project 2a), and Zamri's accuracy of the LOD meshes against the full mesh.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "LookOptions.h"
 #include "OptionValues.h"
 #include "RenderSession.h"
 #include "RoamBench.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
+#include "core/HorizonSweep.h"
+#include "core/SunLight.h"
 #include "io/TileDirectory.h"
 #include "lod/QuadtreeAccuracy.h"
 
@@ -90,6 +93,29 @@ nlohmann::json bench_method(const MethodEntry& m, RenderSession& session, const 
     return run;
 }
 
+// The sun's cost, measured in the same run as the methods: the horizon sweep
+// and the relighting of every sample for new sun directions (a moving sun,
+// as the time-of-day keys of `fly` move it), medians over a day's arc.
+nlohmann::json bench_sun(const Terrain& t, const Environment& env) {
+    std::vector<double> sweep, light;
+    ShadowCeiling ceiling;
+    std::vector<Rgb8> colors;
+    Environment e = env;
+    e.shadows = true;
+    for (double hour = 7.0; hour <= 17.0; hour += 1.25) {
+        e.sun_dir = sun_at_hour(hour);
+        auto t0 = std::chrono::steady_clock::now();
+        sweep_shadow_ceiling(t, e.sun_dir, ceiling);
+        sweep.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        t0 = std::chrono::steady_clock::now();
+        light_colors(t, e, &ceiling, colors);
+        light.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return {{"sun_directions", int(sweep.size())}, {"ms_shadow_sweep", median(sweep)}, {"ms_light", median(light)}};
+}
+
+bool plain_look(const Environment& env) { return lighting_is_baked(env) && !env.shadows; }
+
 // Zamri's figures for a LOD mesh against full resolution (the terrain in
 // memory): how many fewer triangles than two per cell, the screen-space error,
 // and the share of the full mesh's terrain pixels whose view depth the
@@ -146,6 +172,22 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
                     r.contains("ns_per_sample") ? fmt("%.2f", r["ns_per_sample"].get<double>()).c_str() : "-",
                     r.contains("depth_within_3pct") ? fmt("%.2f %%", 100.0 * r["depth_within_3pct"].get<double>()).c_str()
                                                     : "-");
+    }
+    if (out.contains("sun")) {
+        const nlohmann::json& s = out["sun"];
+        std::printf("\nSun: lighting %s, shadows %s, sun azimuth %.1f elevation %.1f\n\n",
+                    out["look"]["lighting"].get<std::string>().c_str(), out["look"]["shadows"].get<bool>() ? "on" : "off",
+                    out["look"]["sun_azimuth"].get<double>(), out["look"]["sun_elevation"].get<double>());
+        std::printf("| step for a new sun direction (median of %d) | ms |\n|---|---:|\n| horizon sweep (shadow ceiling) | %.2f "
+                    "|\n| light of every sample | %.2f |\n",
+                    s["sun_directions"].get<int>(), s["ms_shadow_sweep"].get<double>(), s["ms_light"].get<double>());
+    }
+    for (const char* name : {"voxel", "voxel-literal"}) {
+        const nlohmann::json* lit = find_run(runs, name);
+        const nlohmann::json* baked = find_run(runs, std::string(name) + " baked");
+        if (lit && baked)
+            std::printf("\n%s lit / %s baked = %.2fx\n", name, name,
+                        (*lit)["ms_median"].get<double>() / (*baked)["ms_median"].get<double>());
     }
     const nlohmann::json* with = find_run(runs, "voxel+objects");
     const nlohmann::json* without = find_run(runs, "voxel+present");
@@ -224,6 +266,7 @@ void add_bench_command(CLI::App& app) {
         TerrainArgs terrain;
         CameraArgs camera;
         MethodOptions methods;
+        LookArgs look;
         std::string method_names;
         int frames = 10;
         int threads = 0;
@@ -235,6 +278,7 @@ void add_bench_command(CLI::App& app) {
     add_terrain_options(*cmd, args->terrain);
     add_camera_options(*cmd, args->camera);
     add_method_options(*cmd, args->methods);
+    add_look_options(*cmd, args->look);
     cmd->add_option("--frames", args->frames,
                     "timed frames per method after one warm-up frame (a method slower than 15 s in all stops at 3)")
         ->transform(decimal<int>())
@@ -269,7 +313,8 @@ void add_bench_command(CLI::App& app) {
         const bool tiles = is_tile_directory(args->terrain.terrain);
         const bool lazy = tiles && std::all_of(methods.begin(), methods.end(),
                                                [](const MethodEntry* m) { return m->reads_tiles; });
-        const DataSet data = lazy ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
+        DataSet data = lazy ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
+        apply_look_options(args->look, data.environment);
         CameraArgs cam_args = args->camera;
         if (!cam_args.far) cam_args.far = 2048.0 * data.terrain.h_scale(); // "far 2048 samples"
         const Camera camera = make_camera(cam_args, data, 1920, 1080);
@@ -294,13 +339,36 @@ void add_bench_command(CLI::App& app) {
             nlohmann::json run = bench_method(*m, session, camera, args->frames, full_mesh_depth);
             runs.push_back(std::move(run));
         }
-        const nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},
+        // With sun lighting or shadows, the ray casters again with the papers'
+        // baked colors in the same run: what the light costs per frame.
+        if (!plain_look(data.environment)) {
+            Environment baked = data.environment;
+            bake_lighting(baked);
+            baked.shadows = false;
+            session.set_environment(baked);
+            for (const MethodEntry* m : methods) {
+                if (m->create != find_terrain_method("voxel")->create &&
+                    m->create != find_terrain_method("voxel-literal")->create)
+                    continue;
+                nlohmann::json run = bench_method(*m, session, camera, args->frames, full_mesh_depth);
+                run["method"] = std::string(m->name) + " baked";
+                runs.push_back(std::move(run));
+            }
+            session.set_environment(data.environment);
+        }
+        nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},
                                     {"rows", data.terrain.rows()},
                                     {"cols", data.terrain.cols()},
                                     {"threads", args->threads > 0 ? args->threads : tbb::info::default_concurrency()},
                                     {"far", camera.far},
                                     {"projection", to_string(camera.projection)},
                                     {"runs", runs}};
+        const SunAngles sun = sun_angles(data.environment.sun_dir);
+        out["look"] = {{"lighting", lighting_is_baked(data.environment) ? "baked" : "sun"},
+                       {"shadows", data.environment.shadows},
+                       {"sun_azimuth", sun.azimuth},
+                       {"sun_elevation", sun.elevation}};
+        if (data.environment.shadows) out["sun"] = bench_sun(data.terrain, data.environment);
         if (args->json) {
             const std::string text = out.dump() + "\n";
             std::fwrite(text.data(), 1, text.size(), stdout);

@@ -15,10 +15,12 @@
 //   method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step
 // the last column as "step:ms;step:ms;..." (mean over the timed frames).
 #include "Commands.h"
+#include "LookOptions.h"
 #include "OptionValues.h"
 #include "RenderSession.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
+#include "core/SunLight.h"
 #include "gl/FlightWindow.h"
 #include "io/Files.h"
 #include "io/FlightRecordFile.h"
@@ -42,6 +44,7 @@ namespace {
 
 struct FlyOptions {
     TerrainArgs terrain;
+    LookArgs look;
     std::string scene, method = "mesh", record, replay, out, screenshot, video, size = "1280x720";
     long long frames = 0;
     int cache_mib = MethodSettings::kDefaultCacheMib;
@@ -158,12 +161,16 @@ void run_fly(const FlyOptions& o) {
     settings.cache_bytes = tile_cache_bytes(o.cache_mib);
     DataSet data = load_terrain_lazily(o.terrain);
     if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
+    apply_look_options(o.look, data.environment);
     MethodContext methods{data.terrain, settings, {}};
     if (is_tile_directory(o.terrain.terrain))
         methods.tiles = [dir = o.terrain.terrain, bound = settings.cache_bytes] {
             return tile_directory_tiles(dir, bound);
         };
     if (!o.replay.empty()) return run_replay(o, data, methods);
+    // `--lighting baked` is where the `1` key starts.
+    const bool lit = !lighting_is_baked(data.environment);
+    data.environment.baked = false;
 
     gl::FlightWindowOptions wo;
     parse_size(o.size, wo.width, wo.height);
@@ -172,6 +179,7 @@ void run_fly(const FlyOptions& o) {
     wo.session.frames = o.frames;
     wo.session.script = KeyScript(std::move(presses));
     wo.session.hud = !o.no_hud;
+    wo.session.lighting = lit;
     wo.session.start = data.start;
     wo.visible = !o.hidden;
     const std::filesystem::path shot_base = o.screenshot.empty() ? std::filesystem::path("overflight.png")
@@ -201,6 +209,7 @@ void add_fly_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("fly", "Fly the hovercraft over a terrain in a window");
     add_terrain_options(*sub, o->terrain);
     sub->add_option("--scene", o->scene, "Scene TOML with objects to add");
+    add_look_options(*sub, o->look);
     sub->add_option("--method", o->method,
                     "Terrain method shown first (" + terrain_method_names() + "; Tab cycles " +
                         terrain_method_names(" -> ", true) + "); with --replay, the one that renders")
@@ -213,7 +222,7 @@ void add_fly_command(CLI::App& app) {
         ->transform(decimal<long long>());
     sub->add_option("--press", o->presses, "KEY:FROM-TO holds KEY during frames FROM..TO-1 (keys: accelerate, brake, "
                                            "left, right, fog, lighting, wireframe, detail-up, detail-down, "
-                                           "next-method, screenshot, hud, quit)")
+                                           "next-method, screenshot, hud, quit, shadows, sun-later, sun-earlier)")
         ->take_all();
     sub->add_option("--screenshot", o->screenshot, "With --frames: save the last frame as PNG");
     sub->add_option("--size", o->size, "Window / replay size WxH");

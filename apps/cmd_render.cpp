@@ -1,9 +1,11 @@
 // `overflight render TERRAIN -o out.png [--method M] [camera options] [--scene FILE]
-//                   [--depth depth.tif] [--stats] [--triangles N] [--error PX]`
+//                   [--depth depth.tif] [--stats] [--triangles N] [--error PX]
+//                   [--lighting sun|baked] [--sun AZ,EL] [--shadows]`
 // (DESIGN sec. 6): one view of a terrain, written as PNG (+ float32 window
 // depth TIFF), with timings and counts as one JSON object on stdout.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "LookOptions.h"
 #include "OptionValues.h"
 #include "RenderSession.h"
 #include "StandardOutput.h"
@@ -30,6 +32,7 @@ void add_render_command(CLI::App& app) {
         TerrainArgs terrain;
         CameraArgs camera;
         MethodOptions methods;
+        LookArgs look;
         std::string out, depth, method = "voxel";
         bool stats = false;
     };
@@ -40,6 +43,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--method", args->method, "terrain renderer: " + terrain_method_names())->capture_default_str();
     add_camera_options(*cmd, args->camera);
     add_method_options(*cmd, args->methods);
+    add_look_options(*cmd, args->look);
     cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
     cmd->callback([args, cmd] {
@@ -51,7 +55,8 @@ void add_render_command(CLI::App& app) {
         if (!row) throw Error("--method", "unknown method '" + args->method + "' (known: " + terrain_method_names() + ")");
         auto t0 = std::chrono::steady_clock::now();
         const bool tiles = is_tile_directory(args->terrain.terrain);
-        const DataSet data = row->reads_tiles ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
+        DataSet data = row->reads_tiles ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
+        apply_look_options(args->look, data.environment);
         const double ms_load = ms_since(t0);
         const Camera camera = make_camera(args->camera, data, 1280, 720);
         RenderSession session(data, args->methods, tiles ? args->terrain.terrain : std::string());

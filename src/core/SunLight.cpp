@@ -18,7 +18,8 @@ glm::vec3 unit_sun(const Environment& env) {
 }
 
 bool same_light(const Environment& a, const Environment& b) {
-    return a.sun_dir == b.sun_dir && a.sun_color == b.sun_color && a.ambient == b.ambient && a.shadows == b.shadows;
+    return a.sun_dir == b.sun_dir && a.sun_color == b.sun_color && a.ambient == b.ambient && a.shadows == b.shadows &&
+           a.baked == b.baked;
 }
 
 std::uint8_t channel(std::uint8_t albedo, float light) {
@@ -55,14 +56,9 @@ double hour_of_sun(const glm::vec3& sun_dir) {
     return 6.0 + 12.0 * (az - 90.0) / 180.0;
 }
 
-void bake_lighting(Environment& env) {
-    env.sun_color = glm::vec3(0.0f);
-    env.ambient = glm::vec3(1.0f);
-}
+void bake_lighting(Environment& env) { env.baked = true; }
 
-bool lighting_is_baked(const Environment& env) {
-    return env.sun_color == glm::vec3(0.0f) && env.ambient == glm::vec3(1.0f);
-}
+bool lighting_is_baked(const Environment& env) { return env.baked; }
 
 glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit) {
     const glm::vec3 sun = unit_sun(env);

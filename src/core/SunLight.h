@@ -41,10 +41,10 @@ glm::vec3 sun_at_hour(double hour);
 // The hour of the arc whose azimuth is nearest to sun_dir's (6:00..18:00).
 double hour_of_sun(const glm::vec3& sun_dir);
 
-// The papers' unlit look: sample colors shown as they are (sun_color 0,
-// ambient 1). `--lighting baked` and the `1` key set it.
+// The papers' look: the terrain's colors shown as they are (whatever light
+// they hold is baked into them); the objects keep the sun. `--lighting
+// baked` and the `1` key set it (Environment::baked).
 void bake_lighting(Environment& env);
-// Whether `env` leaves every color as it is (baked lighting).
 bool lighting_is_baked(const Environment& env);
 
 // The light at a sample of normal `n` (unit): ambient + sun_color * max(n . L, 0) * lit.

@@ -28,6 +28,8 @@ struct HudInfo {
     double speed = 0;           // world units per second
     double heading = 0;         // degrees
     bool fog = false, lighting = true, wireframe = false;
+    bool shadows = false;
+    glm::vec3 sun_dir{0.0f, 1.0f, 0.0f}; // towards the sun
 };
 
 class Hud {

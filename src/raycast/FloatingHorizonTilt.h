@@ -43,7 +43,8 @@ void resolve_tilt(const FloatingHorizonState& s, const Camera& camera, const Env
     const TiltRows& tr = s.tilt_rows;
     const double fp = camera.focal_px();
     const double p = glm::radians(camera.pitch), sp = std::sin(p), cp = std::cos(p);
-    const RayMarcher marcher(s.terrain.terrain, env);
+    RayMarcher marcher(s.terrain.terrain, env);
+    marcher.set_colors(s.terrain.source_colors);
     const RayMarcher::Frame mf = RayMarcher::frame(camera);
     std::atomic<long long> painted{0};
     std::atomic<int> fallback{0};
