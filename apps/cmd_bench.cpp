@@ -114,8 +114,6 @@ nlohmann::json bench_sun(const Terrain& t, const Environment& env) {
     return {{"sun_directions", int(sweep.size())}, {"ms_shadow_sweep", median(sweep)}, {"ms_light", median(light)}};
 }
 
-bool plain_look(const Environment& env) { return lighting_is_baked(env) && !env.shadows; }
-
 // Zamri's figures for a LOD mesh against full resolution (the terrain in
 // memory): how many fewer triangles than two per cell, the screen-space error,
 // and the share of the full mesh's terrain pixels whose view depth the
@@ -339,9 +337,9 @@ void add_bench_command(CLI::App& app) {
             nlohmann::json run = bench_method(*m, session, camera, args->frames, full_mesh_depth);
             runs.push_back(std::move(run));
         }
-        // With sun lighting or shadows, the ray casters again with the papers'
-        // baked colors in the same run: what the light costs per frame.
-        if (!plain_look(data.environment)) {
+        // With --shadows, the ray casters again with the papers' baked colors
+        // in the same run: what the light and the shadows cost per frame.
+        if (data.environment.shadows) {
             Environment baked = data.environment;
             bake_lighting(baked);
             baked.shadows = false;
