@@ -89,7 +89,8 @@ SweepGrid sweep_grid(const Terrain& t, const glm::vec3& sun) {
 // the samples whose J is in [J0, J1). `state`: scratch.
 void sweep_lines(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ceiling, std::vector<float>& state) {
     state.assign(std::size_t(J1 - J0 + 1), ShadowCeiling::kOpen);
-    float* S = state.data() - J0; // S[J] for J in [J0, J1]
+    float* const S0 = state.data();
+    const auto S = [S0, J0](int J) -> float& { return S0[J - J0]; }; // sun line J's ceiling, J in [J0, J1]
     const std::uint16_t* raw = t.heights().data();
     const float vs = t.v_scale(), y0 = t.y_offset();
     const int last = g.length - 1;
@@ -106,9 +107,9 @@ void sweep_lines(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ce
         for (int p = p0; p < p1; ++p) {
             const int J = kLines * p + shift;
             float c;
-            if (f == 0.0f || p == last) c = S[J];     // on sun line J, or sun line J + 1 beyond the grid
-            else if (p == 0) c = S[J + 1];             // sun line J is off the grid
-            else c = S[J] + f * (S[J + 1] - S[J]);
+            if (f == 0.0f || p == last) c = S(J);     // on sun line J, or sun line J + 1 beyond the grid
+            else if (p == 0) c = S(J + 1);             // sun line J is off the grid
+            else c = S(J) + f * (S(J + 1) - S(J));
             ceiling[g.index(line, p)] = c;
         }
         // Each family of sun lines (J = kLines j + phase) crosses this grid
@@ -124,7 +125,7 @@ void sweep_lines(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ce
             for (int j = j_lo; j <= j_hi; ++j) {
                 const int ia = j + fl, ib = std::min(ia + 1, last);
                 const float ha = height(line, ia), hb = height(line, ib);
-                float& s = S[kLines * j + phase];
+                float& s = S(kLines * j + phase);
                 s = std::max(ha + fr * (hb - ha), s) - g.rise;
             }
             // Between this grid line and the next a sun line may cross a
@@ -139,7 +140,7 @@ void sweep_lines(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ce
             const int next = line + g.step, mo = int(m0);
             for (int j = std::max(j_lo, -mo); j <= std::min(j_hi, last - mo); ++j) {
                 const float ha = height(line, j + mo), hb = height(next, j + mo);
-                float& s = S[kLines * j + phase];
+                float& s = S(kLines * j + phase);
                 s = std::max(s, ha + t_cross * (hb - ha) - rest);
             }
         }
