@@ -46,7 +46,7 @@ DataSet load_terrain_lazily(const TerrainArgs& args);
 
 // What `info` reports: the tile directory's overview as load_terrain_lazily,
 // other terrains through describe_terrain (io/LoadTerrain.h): exact figures
-// for a raster of up to about 2049x2049 samples (loaded in about a second),
+// for a raster of up to about 1025x1025 samples (loaded in about a second),
 // a survey (approximate figures, nothing read whole) for larger ones.
 TerrainDescription describe_terrain_lazily(const TerrainArgs& args);
 
