@@ -759,8 +759,8 @@ TerrainDescription survey_gdal_raster(const std::string& path, const std::string
     d.rows = m.rows;
     d.cols = m.cols;
     d.h_scale = float(hs);
-    d.extent_x = float(hs * (m.cols - 1));
-    d.extent_z = float(hs * (m.rows - 1));
+    d.extent_x = d.h_scale * float(m.cols - 1); // as Terrain::width and depth compute them
+    d.extent_z = d.h_scale * float(m.rows - 1);
     const double source_share = sampled > 0 ? double(voids) / double(sampled) : 0.0;
     d.nodata_share = 1.0 - m.inside_share * (1.0 - source_share);
     info.nodata_filled = std::llround(d.nodata_share * double(m.rows) * double(m.cols));
@@ -787,9 +787,14 @@ TerrainDescription survey_gdal_raster(const std::string& path, const std::string
     } else {
         info.color_source = "elevation ramp + hillshade";
     }
-    d.approximation = "elevation range, height mapping and no-data share from " + std::to_string(sampled) + " of " +
-                      std::to_string((long long)info.source_cols * info.source_rows) + " source samples (" + how +
-                      "); the raster is not read whole";
+    const std::string figures = "elevation range, height mapping and no-data share from ";
+    if (whole)
+        d.approximation = figures + "all " + std::to_string(sampled) +
+                          " source samples, before the no-data filling and reprojection of a load";
+    else
+        d.approximation = figures + std::to_string(sampled) + " of " +
+                          std::to_string((long long)info.source_cols * info.source_rows) + " source samples (" + how +
+                          "); the raster is not read whole";
     return d;
 }
 
