@@ -280,7 +280,9 @@ ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
     if (!warp) {
         opts.insert(opts.end(), {"-outsize", std::to_string(dem.cols), std::to_string(dem.rows), "-r", "bilinear"});
     }
-    gdal::Dataset picked = gdal::translate(src.get(), opts, color_path);
+    // Picked lazily: only the warp or the read onto the DEM grid below reads
+    // the color raster, block by block, so one larger than memory fits.
+    gdal::Dataset picked = gdal::translate_lazily(src.get(), opts, color_path);
     std::string how = "stretched to the DEM grid (bilinear; no common georeferencing)";
     if (warp) {
         // The DEM's samples are its pixel centres, so the color grid is the DEM's pixel grid.
@@ -294,7 +296,7 @@ ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
         picked = gdal::warp(picked.get(),
                             {"-t_srs", dem.wkt, "-te", fmt(xmin, 17), fmt(std::min(ymin, ymax), 17), fmt(xmax, 17),
                              fmt(std::max(ymin, ymax), 17), "-ts", std::to_string(dem.cols), std::to_string(dem.rows),
-                             "-r", method},
+                             "-r", method, "-ovr", "NONE"},
                             color_path);
         how = std::string("warped onto the DEM grid (") + method + ")";
     }

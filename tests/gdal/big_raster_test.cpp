@@ -17,9 +17,6 @@
 namespace overflight {
 namespace {
 
-using test::Restrictions;
-using test::run_overflight;
-using test::run_overflight_restricted;
 using test::ScratchDir;
 
 // A whole-metre pattern with no two samples of a 4x4 block alike, so that a
@@ -192,8 +189,8 @@ TEST(BigRasterCli, InfoOnALargeRasterSurveysItInBoundedMemory) {
     ScratchDir dir;
     const std::string path = dir / "big.tif";
     write_sparse_dem(path, 20000);
-    const Restrictions half_gib{512ull << 20, false};
-    test::RunResult r = run_overflight_restricted("info --json '" + path + "'", half_gib);
+    const test::Restrictions half_gib{512ull << 20, false};
+    test::RunResult r = test::run_overflight_restricted("info --json '" + path + "'", half_gib);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     const auto j = nlohmann::json::parse(r.out);
@@ -205,7 +202,7 @@ TEST(BigRasterCli, InfoOnALargeRasterSurveysItInBoundedMemory) {
     EXPECT_EQ(j["elevation_min"], 0.0);
     EXPECT_NE(j["approximation"].get<std::string>().find("blocks of 256x256"), std::string::npos) << j;
     EXPECT_NE(j["crs"].get<std::string>().find("UTM zone 10N"), std::string::npos);
-    r = run_overflight_restricted("info '" + path + "'", half_gib);
+    r = test::run_overflight_restricted("info '" + path + "'", half_gib);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("\nelevation_min: 0.0 (approximate)\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\nrows: 20000\n"), std::string::npos) << r.out;
@@ -216,7 +213,7 @@ TEST(BigRasterCli, RenderDecimatesALargeRasterInBoundedMemory) {
     const std::string path = dir / "big.tif";
     write_sparse_dem(path, 20000);
     // Decimated by 20 to 1000x1000: a few MB of terrain, where a full load would need 6 GiB.
-    const test::RunResult r = run_overflight_restricted(
+    const test::RunResult r = test::run_overflight_restricted(
         "render '" + path + "' --max-direct-size 1000 --size 64x48 -o '" + dir / "out.png" + "'", {3ull << 30, false});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.err, "overflight: " + path +
@@ -231,14 +228,14 @@ TEST(BigRasterCli, RasterBeyondTheTerrainLimitIsOneLine) {
     const std::string path = dir / "huge.tif";
     write_sparse_dem(path, 70000);
     for (const std::string& command : std::vector<std::string>{"info", "render -o '" + dir / "out.png" + "'"}) {
-        const test::RunResult r = run_overflight(command + " '" + path + "'");
+        const test::RunResult r = test::run_overflight(command + " '" + path + "'");
         EXPECT_EQ(r.exit_code, 1);
         EXPECT_EQ(r.err, "overflight: " + path + ": raster is 70000x70000, more than 65537 samples per side\n");
     }
 }
 
 TEST(BigRasterCli, MaxDirectSizeOutOfRangeIsOneLine) {
-    const test::RunResult r = run_overflight("render demo --demo-size 33 --max-direct-size 1 -o /dev/null");
+    const test::RunResult r = test::run_overflight("render demo --demo-size 33 --max-direct-size 1 -o /dev/null");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "overflight: --max-direct-size: 1 is not a side in 2..65537 samples\n");
 }
