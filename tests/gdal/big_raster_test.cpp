@@ -182,6 +182,25 @@ void write_sparse_dem(const std::string& path, int side) {
     ASSERT_LT(std::filesystem::file_size(path), 4u << 20);
 }
 
+TEST(BigRaster, SurveyReadsAnOverviewWhenTheRasterHasOne) {
+    ScratchDir dir;
+    const std::string path = dir / "ov.tif";
+    write_sparse_dem(path, 5000);
+    {
+        GDALDatasetH ds = GDALOpen(path.c_str(), GA_Update);
+        ASSERT_NE(ds, nullptr);
+        int levels[] = {2, 4};
+        ASSERT_EQ(GDALBuildOverviews(ds, "AVERAGE", 2, levels, 0, nullptr, nullptr, nullptr), CE_None);
+        GDALClose(ds);
+    }
+    // 2500x2500 is the smallest overview holding the 4194304 samples a survey reads.
+    const TerrainDescription d = survey_gdal_raster(path);
+    EXPECT_NE(d.approximation.find("(overview 2500x2500)"), std::string::npos) << d.approximation;
+    EXPECT_EQ(d.elevation_min, 0.0f);
+    EXPECT_EQ(d.elevation_max, 50.0f);
+    EXPECT_EQ(d.rows, 5000);
+}
+
 // Needs an address-space limit, which an AddressSanitizer build cannot run under.
 #if OVERFLIGHT_ADDRESS_SPACE_CAN_BE_LIMITED
 TEST(BigRasterCli, InfoOnALargeRasterSurveysItInBoundedMemory) {
