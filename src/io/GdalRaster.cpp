@@ -194,7 +194,7 @@ Grid grid_of(GDALDatasetH ds, const std::string& subject) {
 // block of source samples (the last cols % factor columns and rows % factor
 // rows are left out), the geotransform's pixel size multiplied by `factor`,
 // so each sample keeps the footprint of its block.
-Grid decimated_grid_of(GDALDatasetH ds, int factor, const std::string& subject) {
+Grid decimated_grid_of(GDALDatasetH ds, const std::string& path, int factor) {
     Grid g;
     g.cols = GDALGetRasterXSize(ds) / factor;
     g.rows = GDALGetRasterYSize(ds) / factor;
@@ -202,7 +202,7 @@ Grid decimated_grid_of(GDALDatasetH ds, int factor, const std::string& subject) 
     for (const int k : {1, 2, 4, 5}) g.gt[k] *= factor;
     const char* wkt = GDALGetProjectionRef(ds);
     g.wkt = wkt ? wkt : "";
-    gdal::read_block_averages(GDALGetRasterBand(ds, 1), factor, g.cols, g.rows, g.z, subject);
+    gdal::read_block_averages(path, factor, g.cols, g.rows, g.z, path);
     return g;
 }
 
@@ -642,7 +642,7 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     const MetricGrid metric = metric_grid_of(src_ds, path);
     const int factor = decimation_factor(metric, max_direct_size);
     check_memory(path, info.source_cols / factor, info.source_rows / factor);
-    Grid grid = factor == 1 ? grid_of(src_ds, path) : decimated_grid_of(src_ds, factor, path);
+    Grid grid = factor == 1 ? grid_of(src_ds, path) : decimated_grid_of(src_ds, path, factor);
 
     bool integral = true;
     const long long voids = heights_to_metres(grid, src_ds, path, info, integral);

@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <new>
+#include <thread>
+
+#include <tbb/parallel_for.h>
 
 namespace overflight::gdal {
 
@@ -33,11 +36,20 @@ void read_window(GDALRasterBandH band, int x, int y, int w, int h, int buf_w, in
 
 } // namespace
 
-void read_block_averages(GDALRasterBandH band, int factor, int cols_out, int rows_out, std::vector<float>& out,
+void read_block_averages(const std::string& path, int factor, int cols_out, int rows_out, std::vector<float>& out,
                          const std::string& subject) {
     resize_or_throw(out, (long long)cols_out * rows_out, cols_out, rows_out, subject);
-    read_window(band, 0, 0, cols_out * factor, rows_out * factor, cols_out, rows_out, out.data(),
-                factor == 1 ? GRIORA_NearestNeighbour : GRIORA_Average, subject);
+    // Strips of whole source blocks' worth of rows keep each task's reads
+    // apart; several strips per core balance uneven decoding costs.
+    const int strips = std::clamp(rows_out / 64, 1, 4 * int(std::thread::hardware_concurrency()));
+    tbb::parallel_for(0, strips, [&](int s) {
+        const int r0 = int((long long)rows_out * s / strips), r1 = int((long long)rows_out * (s + 1) / strips);
+        if (r1 <= r0) return;
+        Dataset ds = open_raster(path);
+        read_window(GDALGetRasterBand(ds.get(), 1), 0, r0 * factor, cols_out * factor, (r1 - r0) * factor, cols_out,
+                    r1 - r0, out.data() + std::size_t(r0) * std::size_t(cols_out),
+                    factor == 1 ? GRIORA_NearestNeighbour : GRIORA_Average, subject);
+    });
 }
 
 std::string sample_band(GDALRasterBandH band, long long budget, const std::function<void(int, int, float)>& visit,

@@ -15,15 +15,18 @@
 
 namespace overflight::gdal {
 
-// Reads the top-left (factor*cols_out) x (factor*rows_out) window of `band`
-// into `out` (cols_out x rows_out floats, row-major), each output sample the
-// mean of its factor x factor block of source samples (GDAL's average
-// resampling: no-data samples are left out of the mean, a block of no-data
-// only is the band's no-data value). GDAL streams the window through its block
-// cache (bounded memory) and reads an overview instead when the band has one at
-// least as fine as the output. factor >= 1; cols_out, rows_out >= 1 and the
-// window inside the band. Error(subject, ...) when memory or the read fails.
-void read_block_averages(GDALRasterBandH band, int factor, int cols_out, int rows_out, std::vector<float>& out,
+// Reads the top-left (factor*cols_out) x (factor*rows_out) window of band 1
+// of the raster at `path` into `out` (cols_out x rows_out floats, row-major),
+// each output sample the mean of its factor x factor block of source samples
+// (GDAL's average resampling: no-data samples are left out of the mean, a
+// block of no-data only is the band's no-data value). GDAL streams the window
+// through its block cache (bounded memory) and reads an overview instead when
+// the band has one at least as fine as the output. Strips of rows are read in
+// parallel, each through its own handle of `path` (a GDAL dataset handle is
+// not thread-safe); each output sample depends on its block alone, so the
+// result is that of one read. factor >= 1; cols_out, rows_out >= 1 and the
+// window inside the band. Error(subject, ...) when memory or a read fails.
+void read_block_averages(const std::string& path, int factor, int cols_out, int rows_out, std::vector<float>& out,
                          const std::string& subject);
 
 // Calls visit(col, row, value) for about `budget` samples of `band` spread
