@@ -233,6 +233,7 @@ void add_bench_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "bench", "Time the terrain renderers on one view (default: 1920x1080, far 2048 cells, the overview camera)");
     add_terrain_options(*cmd, args->terrain);
+    add_max_direct_size_option(*cmd, args->terrain);
     add_camera_options(*cmd, args->camera);
     add_method_options(*cmd, args->methods);
     cmd->add_option("--frames", args->frames,

@@ -200,6 +200,7 @@ void add_fly_command(CLI::App& app) {
     auto o = std::make_shared<FlyOptions>();
     CLI::App* sub = app.add_subcommand("fly", "Fly the hovercraft over a terrain in a window");
     add_terrain_options(*sub, o->terrain);
+    add_max_direct_size_option(*sub, o->terrain);
     sub->add_option("--scene", o->scene, "Scene TOML with objects to add");
     sub->add_option("--method", o->method,
                     "Terrain method shown first (" + terrain_method_names() + "; Tab cycles " +

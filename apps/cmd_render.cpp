@@ -36,6 +36,7 @@ void add_render_command(CLI::App& app) {
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "Render one view of a terrain to a PNG (and its depth to a TIFF)");
     add_terrain_options(*cmd, args->terrain);
+    add_max_direct_size_option(*cmd, args->terrain);
     cmd->add_option("-o,--output", args->out, "output PNG")->required();
     cmd->add_option("--method", args->method, "terrain renderer: " + terrain_method_names())->capture_default_str();
     add_camera_options(*cmd, args->camera);

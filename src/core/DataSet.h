@@ -45,6 +45,9 @@ struct TerrainInfo {
     std::string nodata_method;     // how no-data was filled
     std::string color_source;      // "color.ppm", a raster path, "elevation ramp + hillshade", "procedural"
     int source_rows = 0, source_cols = 0;
+    // Each terrain sample stands for decimation x decimation source samples
+    // (a raster larger than a direct render takes, read decimated); 1: full resolution.
+    int decimation = 1;
     // Georeferencing of the terrain grid as loaded (after any reprojection),
     // GDAL convention: sample (row i, col j) is the pixel whose top-left
     // corner is (gt[0] + j gt[1] + i gt[2], gt[3] + j gt[4] + i gt[5]) in

@@ -87,8 +87,13 @@ Dataset create_mem(const std::string& subject, int cols, int rows, int bands, GD
     return ds;
 }
 
-Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
-    StringList args(with_mem_output(options));
+namespace {
+
+Dataset translate_to(const std::string& format, GDALDatasetH src, const std::vector<std::string>& options,
+                     const std::string& subject) {
+    std::vector<std::string> all{"-of", format};
+    all.insert(all.end(), options.begin(), options.end());
+    StringList args(all);
     GDALTranslateOptions* opts = GDALTranslateOptionsNew(args.list, nullptr);
     if (!opts) throw Error(subject, "bad translate options: " + last_error("?"));
     CPLErrorReset();
@@ -97,6 +102,16 @@ Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, con
     GDALTranslateOptionsFree(opts);
     if (!out || usage_error) throw Error(subject, "cannot convert raster: " + last_error("GDALTranslate failed"));
     return out;
+}
+
+} // namespace
+
+Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
+    return translate_to("MEM", src, options, subject);
+}
+
+Dataset translate_lazily(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
+    return translate_to("VRT", src, options, subject);
 }
 
 Dataset warp(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
