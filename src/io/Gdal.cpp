@@ -41,6 +41,14 @@ void ensure_initialised() {
     static std::once_flag once;
     std::call_once(once, [] {
         CPLSetErrorHandler(CPLQuietErrorHandler);
+        // GDALFillNodata keeps its work rasters in temporary files named by
+        // CPLGenerateTempFilename, in the current folder unless CPL_TMPDIR is
+        // set: a run stopped there would leave them beside the user's files.
+        if (!CPLGetConfigOption("CPL_TMPDIR", nullptr)) {
+            std::error_code ec;
+            const std::filesystem::path tmp = std::filesystem::temp_directory_path(ec);
+            if (!ec) CPLSetConfigOption("CPL_TMPDIR", tmp.c_str());
+        }
         GDALAllRegister();
     });
 }
