@@ -6,6 +6,7 @@
 // (CMSC 23700 project 2a), and Zamri's accuracy of the LOD meshes against the full mesh.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "LookOptions.h"
 #include "OptionValues.h"
 #include "RenderSession.h"
 #include "RoamBench.h"
@@ -147,6 +148,10 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
                     r.contains("depth_within_3pct") ? fmt("%.2f %%", 100.0 * r["depth_within_3pct"].get<double>()).c_str()
                                                     : "-");
     }
+    for (const auto& r : runs)
+        if (r.contains("x_without_looks"))
+            std::printf("%s / without = %.3fx\n", r["method"].get<std::string>().c_str(),
+                        r["x_without_looks"].get<double>());
     const nlohmann::json* with = find_run(runs, "voxel+objects");
     const nlohmann::json* without = find_run(runs, "voxel+present");
     if (with || without) {
@@ -224,6 +229,7 @@ void add_bench_command(CLI::App& app) {
         TerrainArgs terrain;
         CameraArgs camera;
         MethodOptions methods;
+        LookArgs looks;
         std::string method_names;
         int frames = 10;
         int threads = 0;
@@ -235,6 +241,7 @@ void add_bench_command(CLI::App& app) {
     add_terrain_options(*cmd, args->terrain);
     add_camera_options(*cmd, args->camera);
     add_method_options(*cmd, args->methods);
+    add_look_options(*cmd, args->looks, "; each method is also timed without it (METHOD and METHOD+looks rows)");
     cmd->add_option("--frames", args->frames,
                     "timed frames per method after one warm-up frame (a method slower than 15 s in all stops at 3)")
         ->transform(decimal<int>())
@@ -290,8 +297,18 @@ void add_bench_command(CLI::App& app) {
             }
             return &*mesh_depth;
         };
+        // With looks, each method is timed as the data set is and with them,
+        // in this run: their cost is the ratio of the two rows.
+        const Environment looks = with_looks(args->looks, data.environment);
+        const bool with_looks_rows = looks.atmosphere != data.environment.atmosphere;
         for (const MethodEntry* m : methods) {
-            nlohmann::json run = bench_method(*m, session, camera, args->frames, full_mesh_depth);
+            session.set_environment(data.environment);
+            runs.push_back(bench_method(*m, session, camera, args->frames, full_mesh_depth));
+            if (!with_looks_rows) continue;
+            session.set_environment(looks);
+            nlohmann::json run = bench_method(*m, session, camera, args->frames, [] { return nullptr; });
+            run["x_without_looks"] = run["ms_median"].get<double>() / runs.back()["ms_median"].get<double>();
+            run["method"] = std::string(m->name) + "+looks";
             runs.push_back(std::move(run));
         }
         const nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},

@@ -80,7 +80,8 @@ void write_run(const std::uint32_t* px, const float* z, int n, Rgb8* oc, float* 
 // with both, lane i is terrain below jend[i]. The lanes are independent; GCC
 // 12 vectorises the sky loop but not the fog loop for generic x86-64 (it
 // would need gathers), hence resolve_rows_avx2.
-template <bool kTerrain, bool kSky>
+// kAir: the aerial perspective (t.air) instead of fog and sky gradient.
+template <bool kTerrain, bool kSky, bool kAir>
 void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, int H, int j0, int j1,
                            const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
                            std::size_t W) {
@@ -95,7 +96,10 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
         alignas(64) std::uint32_t px[kShearBlock];
         alignas(64) float zs[kShearBlock];
         ray_lengths(blk.len2, m * m, lens);
-        if constexpr (kSky)
+        if constexpr (kSky && kAir)
+            for (int i = 0; i < kShearBlock; ++i)
+                skies[i] = t.air->sky(m / lens[i], (blk.sun_dot[i] + m * t.sun_y) / lens[i]);
+        else if constexpr (kSky)
             for (int i = 0; i < kShearBlock; ++i) skies[i] = SkyTable::lookup(t.sky, m / lens[i]);
         for (int i = 0; i < kShearBlock; ++i) {
             const float len = lens[i];
@@ -107,9 +111,14 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
                 // rather than a masked load.
                 const int k = int(ss[i]) & -int(terrain);
                 z = t.slice_depth[k];
-                // FogTable::weight (the distance is within the table by construction).
-                const int w = std::min(int(t.slice_d[k] * len * fog_step + 0.5f), FogTable::kEntries);
-                fogged = fog_blend(sc[i], t.fog_color, fog[w]);
+                const float d = t.slice_d[k];
+                if constexpr (kAir) {
+                    fogged = t.air->terrain(sc[i], d * len, d * m, (blk.sun_dot[i] + m * t.sun_y) / len);
+                } else {
+                    // FogTable::weight (the distance is within the table by construction).
+                    const int w = std::min(int(d * len * fog_step + 0.5f), FogTable::kEntries);
+                    fogged = fog_blend(sc[i], t.fog_color, fog[w]);
+                }
             }
             px[i] = terrain ? fogged : skies[i];
             zs[i] = terrain ? z : 1.0f;
@@ -120,6 +129,34 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
 }
 
 #if OVERFLIGHT_RESOLVE_AVX2
+// Lanes i..i+7 of an image row's run: with `direct` (a full block) straight
+// to the images (row_c, row_d: the run's first pixel), else to px/zs for
+// write_run.
+__attribute__((target("avx2"))) inline void store_lanes(__m256i pixel, __m256 depth, int i, bool direct,
+                                                         std::uint32_t* px, float* zs, Rgb8* row_c, float* row_d) {
+    if (!direct) {
+        _mm256_store_si256(reinterpret_cast<__m256i*>(px + i), pixel);
+        _mm256_store_ps(zs + i, depth);
+        return;
+    }
+    // 8 packed colors to 24 bytes of Rgb8: 12 bytes per 128-bit lane, then the lanes joined.
+    const __m256i rgb_bytes = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
+                                               0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+    const __m256i rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(pixel, rgb_bytes),
+                                                    _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7));
+    char* oc = reinterpret_cast<char*>(row_c + i);
+    // 32 bytes hold these 24 and the next 8 pixels' first 8, which the next
+    // store overwrites; the last 8 pixels store exactly 24 (the next block's
+    // pixels may be another thread's).
+    if (i + 8 < kShearBlock) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(oc), rgb);
+    } else {
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(oc), _mm256_castsi256_si128(rgb));
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(oc + 16), _mm256_extracti128_si256(rgb, 1));
+    }
+    _mm256_storeu_ps(row_d + i, depth);
+}
+
 // resolve_rows_portable with AVX2 gathers (GCC does not emit them for generic
 // x86-64 tuning): the same operations in the same order, so the same bits.
 // kEven: the slices are evenly spaced (ShearResolveTables::d_step), so the
@@ -142,10 +179,6 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
     const __m256i fog_rb = _mm256_set1_epi32(int(t.fog_color & 0xFF00FFu));
     const __m256i fog_g = _mm256_set1_epi32(int(t.fog_color & 0x00FF00u));
     const __m256i round_rb = _mm256_set1_epi32(0x800080), round_g = _mm256_set1_epi32(0x008000);
-    // 8 packed colors to 24 bytes of Rgb8: 12 bytes per 128-bit lane, then the lanes joined.
-    const __m256i rgb_bytes = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
-                                               0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
-    const __m256i rgb_join = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
         const float mj = t.row_m[j];
@@ -186,25 +219,106 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
                 const __m256i e = _mm256_max_epi32(_mm256_min_epi32(_mm256_cvttps_epi32(x), sky_last), zero);
                 sky = _mm256_i32gather_epi32(sky_table, e, 4);
             }
-            const __m256i pixel = _mm256_blendv_epi8(sky, fogged, terrain);
-            const __m256 depth = _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain));
-            if (direct) {
-                const __m256i rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(pixel, rgb_bytes), rgb_join);
-                char* oc = reinterpret_cast<char*>(out_c + row + std::size_t(i));
-                // 32 bytes hold these 24 and the next 8 pixels' first 8, which
-                // the next store overwrites; the last 8 pixels store exactly 24
-                // (the next block's pixels may be another thread's).
-                if (i + 8 < kShearBlock) {
-                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(oc), rgb);
-                } else {
-                    _mm_storeu_si128(reinterpret_cast<__m128i*>(oc), _mm256_castsi256_si128(rgb));
-                    _mm_storel_epi64(reinterpret_cast<__m128i*>(oc + 16), _mm256_extracti128_si256(rgb, 1));
-                }
-                _mm256_storeu_ps(out_d + row + std::size_t(i), depth);
-            } else {
-                _mm256_store_si256(reinterpret_cast<__m256i*>(px + i), pixel);
-                _mm256_store_ps(zs + i, depth);
+            store_lanes(_mm256_blendv_epi8(sky, fogged, terrain), _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain)),
+                        i, direct, px, zs, out_c + row, out_d + row);
+        }
+        if (!direct) write_run(px, zs, blk.n, out_c + row, out_d + row);
+    }
+}
+
+// AerialTables::clamp_index, lane by lane.
+__attribute__((target("avx2"))) inline __m256i index(__m256 x, __m256 last) {
+    return _mm256_cvttps_epi32(_mm256_min_ps(_mm256_max_ps(x, _mm256_setzero_ps()), last));
+}
+
+// AerialTables::blend (and, without the surface's share, shade_sky) of 8
+// lanes: each channel's (s w + h (256 - w) + 128) >> 8 is at most 65408, so
+// red and blue share 16-bit multiplies (the weights are 10-bit fields of t).
+__attribute__((target("avx2"))) inline __m256i air_blend(__m256i surface, __m256i t, __m256i haze,
+                                                          bool with_surface = true) {
+    const __m256i rb = _mm256_set1_epi32(0x00FF00FF), byte = _mm256_set1_epi32(0xFF);
+    const __m256i full = _mm256_set1_epi32(0x01000100), round = _mm256_set1_epi32(0x00800080);
+    const __m256i w_rb = _mm256_or_si256(_mm256_and_si256(t, _mm256_set1_epi32(0x3FF)),
+                                         _mm256_and_si256(_mm256_srli_epi32(t, 4), _mm256_set1_epi32(0x3FF0000)));
+    const __m256i w_g = _mm256_and_si256(_mm256_srli_epi32(t, 10), _mm256_set1_epi32(0x3FF));
+    const __m256i h_rb = _mm256_and_si256(haze, rb), h_g = _mm256_and_si256(_mm256_srli_epi32(haze, 8), byte);
+    __m256i out_rb, out_g;
+    if (with_surface) {
+        out_rb = _mm256_add_epi16(_mm256_mullo_epi16(_mm256_and_si256(surface, rb), w_rb),
+                                  _mm256_mullo_epi16(h_rb, _mm256_sub_epi16(full, w_rb)));
+        out_g = _mm256_add_epi16(_mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(surface, 8), byte), w_g),
+                                 _mm256_mullo_epi16(h_g, _mm256_sub_epi16(full, w_g)));
+    } else {
+        out_rb = _mm256_mullo_epi16(h_rb, w_rb);
+        out_g = _mm256_mullo_epi16(h_g, w_g);
+    }
+    out_rb = _mm256_srli_epi16(_mm256_add_epi16(out_rb, round), 8);
+    out_g = _mm256_srli_epi16(_mm256_add_epi16(out_g, round), 8);
+    return _mm256_or_si256(out_rb, _mm256_slli_epi32(out_g, 8));
+}
+
+// resolve_rows_portable<kTerrain, kSky, true> with AVX2 gathers: the same
+// operations in the same order (AerialTables' lookups and blends), so the
+// same bits.
+template <bool kTerrain, bool kSky, bool kEven>
+__attribute__((target("avx2"))) void resolve_air_rows_avx2(const ShearResolveTables& t, const ShearBlock& blk,
+                                                           int H, int j0, int j1, const std::uint32_t* color,
+                                                           const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                                                           std::size_t W) {
+    const AerialTables& air = *t.air;
+    const float* column = air.column();
+    const int* transmit = reinterpret_cast<const int*>(air.transmit());
+    const int* haze = reinterpret_cast<const int*>(air.haze());
+    const int* opacity = reinterpret_cast<const int*>(air.opacity());
+    const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
+    const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
+    const __m256 sun_y = _mm256_set1_ps(t.sun_y);
+    const __m256 dy_lo = _mm256_set1_ps(air.dy_lo()), inv_dy = _mm256_set1_ps(air.inv_dy_step());
+    const __m256 last_height = _mm256_set1_ps(float(AerialTables::kHeights - 1));
+    const __m256 last_column = _mm256_set1_ps(float(AerialTables::kColumns));
+    const __m256 phase_scale = _mm256_set1_ps(AerialTables::kPhaseScale);
+    const __m256 last_phase = _mm256_set1_ps(float(AerialTables::kPhases - 1));
+    const __m256 last_sky = _mm256_set1_ps(float(AerialTables::kSkies - 1));
+    const bool direct = blk.n == kShearBlock;
+    for (int j = j0; j < j1; ++j) {
+        const float mj = t.row_m[j];
+        const __m256 m = _mm256_set1_ps(mj), m2 = _mm256_set1_ps(mj * mj);
+        const __m256i jv = _mm256_set1_epi32(j);
+        const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
+        const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
+        const std::size_t row = image_row(blk, H, j, W, out_c, out_d);
+        alignas(32) std::uint32_t px[kShearBlock];
+        alignas(32) float zs[kShearBlock];
+        for (int i = 0; i < kShearBlock; i += 8) {
+            const __m256 len = _mm256_sqrt_ps(_mm256_add_ps(_mm256_loadu_ps(blk.len2 + i), m2));
+            const __m256i terrain =
+                kTerrain && kSky
+                    ? _mm256_cmpgt_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(blk.jend + i)), jv)
+                    : _mm256_set1_epi32(kTerrain ? -1 : 0);
+            const __m256 cos_sun =
+                _mm256_div_ps(_mm256_add_ps(_mm256_loadu_ps(blk.sun_dot + i), _mm256_mul_ps(m, sun_y)), len);
+            const __m256i p = index(_mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(cos_sun, one), phase_scale), half),
+                                    last_phase);
+            const __m256i h = _mm256_i32gather_epi32(haze, p, 4);
+            __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
+            __m256 z = one;
+            if constexpr (kTerrain) {
+                const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
+                z = _mm256_i32gather_ps(t.slice_depth, k, 4);
+                const __m256 d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
+                                       : _mm256_i32gather_ps(t.slice_d, k, 4);
+                const __m256 dist = _mm256_mul_ps(d, len), dy = _mm256_mul_ps(d, m);
+                const __m256i hj = index(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, dy_lo), inv_dy), half), last_height);
+                const __m256 x = _mm256_add_ps(_mm256_mul_ps(dist, _mm256_i32gather_ps(column, hj, 4)), half);
+                const __m256i w = _mm256_i32gather_epi32(transmit, _mm256_cvttps_epi32(_mm256_min_ps(x, last_column)), 4);
+                lit = air_blend(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i)), w, h);
             }
+            if constexpr (kSky) {
+                const __m256i q = index(_mm256_add_ps(_mm256_mul_ps(_mm256_div_ps(m, len), last_sky), half), last_sky);
+                sky = air_blend(_mm256_setzero_si256(), _mm256_i32gather_epi32(opacity, q, 4), h, false);
+            }
+            store_lanes(_mm256_blendv_epi8(sky, lit, terrain), _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain)), i,
+                        direct, px, zs, out_c + row, out_d + row);
         }
         if (!direct) write_run(px, zs, blk.n, out_c + row, out_d + row);
     }
@@ -238,6 +352,17 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     static const bool avx2 = resolve_kernel_available(ResolveKernel::Avx2);
     if (kernel == ResolveKernel::Auto) kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
 #if OVERFLIGHT_RESOLVE_AVX2
+    if (kernel == ResolveKernel::Avx2 && t.air) {
+        if (t.d_step > 0.0f) {
+            resolve_air_rows_avx2<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+            resolve_air_rows_avx2<true, true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        } else {
+            resolve_air_rows_avx2<true, false, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+            resolve_air_rows_avx2<true, true, false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        }
+        resolve_air_rows_avx2<false, true, false>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+        return;
+    }
     if (kernel == ResolveKernel::Avx2) {
         if (t.d_step > 0.0f) {
             resolve_rows_avx2<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
@@ -250,9 +375,15 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
         return;
     }
 #endif
-    resolve_rows_portable<true, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-    resolve_rows_portable<true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-    resolve_rows_portable<false, true>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+    if (t.air) {
+        resolve_rows_portable<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+        resolve_rows_portable<true, true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        resolve_rows_portable<false, true, true>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+        return;
+    }
+    resolve_rows_portable<true, false, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+    resolve_rows_portable<true, true, false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    resolve_rows_portable<false, true, false>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
 }
 
 } // namespace overflight
