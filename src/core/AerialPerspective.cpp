@@ -51,7 +51,7 @@ AerialFrame aerial_frame(const Environment& env, double eye_y) {
     const double twilight = std::clamp(1.0 + f.sun.y / kTwilightSine, 0.0, 1.0);
     const double column = f.eye_density * f.scale_height * air_mass(f.sun.y);
     for (int c = 0; c < 3; ++c) {
-        const double light = double(a.exposure) * a.sunlight[c] * std::exp(-f.beta[c] * column) * twilight;
+        const double light = double(a.exposure) * a.sunlight[c] * height_factor(f.beta[c] * column) * twilight;
         f.rayleigh_light[c] = light * a.rayleigh[c] / f.beta[c];
         f.haze_light[c] = light * a.haze / f.beta[c];
     }

@@ -20,11 +20,14 @@
 //       R_c = exposure E_c rayleigh_c / beta_c, M_c = exposure E_c haze / beta_c,
 //       P_R = 3/4 (1 + cos^2),  P_M = (1 - g^2) / (1 + g^2 - 2 g cos)^1.5 (both average 1),
 //       display(L) = (1 - exp(-L))^(1/2.2) (exposure, then gamma);
-//   sunlight E_c = sunlight_c exp(-beta_c rho0 H m(sun elevation)) t, the sun's
-//   path from the eye's height up through the atmosphere with Kasten and
-//   Young's air mass m ("Revised optical air mass tables and approximation
-//   formula", Applied Optics 28, 1989) and t fading it out from the horizon to
-//   5.7 degrees below it (twilight) -- warm and dim at low sun;
+//   sunlight E_c = sunlight_c G(k_c) t, k_c = beta_c rho0 H m(sun elevation):
+//   the sun's transmittance exp(-k_c u) down to the air of density u rho0
+//   (u <= 1, Kasten and Young's air mass m, "Revised optical air mass tables
+//   and approximation formula", Applied Optics 28, 1989), averaged over the
+//   air above the eye weighted by its density (the integral of exp(-k u) du
+//   over u in [0, 1]), which is exactly how a sky ray of any elevation weighs
+//   the air it scatters in; t fades it out from the horizon to 5.7 degrees
+//   below it (twilight). Warm and dim at low sun;
 //   a terrain point:  color_c = surface_c T_c + (1 - T_c) C_c  (blended in
 //   display space, as GL fog is);
 //   the sky along a ray of elevation sine s:  sky_c = V_c(s) C_c with the

@@ -21,7 +21,7 @@ namespace overflight {
 // 1 / world unit at height 0. core/AerialPerspective.h evaluates it.
 struct AtmosphereParams {
     glm::vec3 rayleigh{11.6e-6f, 27.0e-6f, 66.2e-6f}; // twice sea-level air's (Bucholtz 1995), for a thicker scale height
-    float haze = 8.0e-6f;          // Mie scattering of the haze, every channel
+    float haze = 1.2e-5f;          // Mie scattering of the haze, every channel
     float scale_height = 4000.0f;  // density exp(-y / scale_height), y world height
     float haze_g = 0.7f;           // Henyey-Greenstein asymmetry of the haze
     float exposure = 2.0f;         // in-scattered sunlight to display: 1 - exp(-exposure L), then gamma 2.2

@@ -73,27 +73,28 @@ TEST(AerialPerspective, AirMass) {
 }
 
 // The eye at y0 = 1000 ln 2, so rho0 = exp(-ln 2) = 1/2.
-//   sunlight E_c = exp(-beta_c rho0 H m(90 deg)) = exp(-beta_c 500 0.999712)
-//                = (0.951243, 0.904863, 0.860745), all Rayleigh: R = E, M = 0;
+//   sunlight E_c = G(k_c), k_c = beta_c rho0 H m(90 deg) = beta_c 500 0.999712
+//                = (0.0499856, 0.0999712, 0.1499568): (1 - e^-k) / k
+//                = (0.975418, 0.951639, 0.928633), all Rayleigh: R = E, M = 0;
 //   a point 1000 away and 1000 ln 2 below: tau_c = beta_c rho0 1000 G(-ln 2)
 //                = beta_c 721.3475, T = (0.930406, 0.865654, 0.805410);
 //   its ray's cosine to the sun is -ln 2 = -0.693147: P_R = 0.75 (1 + 0.480453),
 //   C_c = (1 - exp(-E_c P_R))^(1/2.2); color = 0.5 T + (1 - T) C
-//                = (0.522510, 0.542026, 0.558769);
+//                = (0.522877, 0.543465, 0.561949);
 //   the zenith sky: V_c = (1 - exp(-beta_c rho0 H))^(1/2.2) = (0.253343, 0.343294, 0.408202)
-//   times C_c at P_R = 1.5: (0.223623, 0.299868, 0.352698).
+//   times C_c at P_R = 1.5: (0.224763, 0.303049, 0.358526).
 TEST(AerialPerspective, HandWorkedFrame) {
     const Environment env = hand_air();
     const AerialFrame f = aerial_frame(env, 1000.0 * std::log(2.0));
     EXPECT_NEAR(f.eye_density, 0.5, 1e-12);
-    expect_near3(f.rayleigh_light, 0.9512431, 0.9048635, 0.8607452);
+    expect_near3(f.rayleigh_light, 0.9754185, 0.9516393, 0.9286330);
     expect_near3(f.haze_light, 0.0, 0.0, 0.0);
     const double dy = -1000.0 * std::log(2.0);
     expect_near3(transmittance(f, 1000.0, dy), 0.9304055, 0.8656544, 0.8054096);
     const glm::dvec3 offset(std::sqrt(1e6 - dy * dy), dy, 0.0);
-    expect_near3(aerial_perspective(f, glm::dvec3(0.5), offset), 0.5225101, 0.5420257, 0.5587695);
+    expect_near3(aerial_perspective(f, glm::dvec3(0.5), offset), 0.5228766, 0.5434654, 0.5619487);
     expect_near3(sky_opacity(f, 1.0), 0.2533425, 0.3432942, 0.4082024);
-    expect_near3(aerial_sky(f, {0.0, 3.0, 0.0}), 0.2236232, 0.2998682, 0.3526979);
+    expect_near3(aerial_sky(f, {0.0, 3.0, 0.0}), 0.2247632, 0.3030485, 0.3585265);
     // At and below the horizon the sky is the haze color itself.
     expect_near3(sky_opacity(f, -0.2), 1.0, 1.0, 1.0);
     const glm::dvec3 below = haze_color(f, -0.1 / std::sqrt(1.01));
