@@ -128,6 +128,17 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
     }
 }
 
+// The block's rows with the portable kernel: all terrain below every
+// column's horizon (jmin), both up to the highest (jmax), all sky above.
+template <bool kAir>
+void resolve_block_portable(const ShearResolveTables& t, const ShearBlock& blk, int H, int jmin, int jmax,
+                            const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                            std::size_t W) {
+    resolve_rows_portable<true, false, kAir>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+    resolve_rows_portable<true, true, kAir>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    resolve_rows_portable<false, true, kAir>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+}
+
 #if OVERFLIGHT_RESOLVE_AVX2
 // Lanes i..i+7 of an image row's run: with `direct` (a full block) straight
 // to the images (row_c, row_d: the run's first pixel), else to px/zs for
@@ -157,78 +168,50 @@ __attribute__((target("avx2"))) inline void store_lanes(__m256i pixel, __m256 de
     _mm256_storeu_ps(row_d + i, depth);
 }
 
-// resolve_rows_portable with AVX2 gathers (GCC does not emit them for generic
-// x86-64 tuning): the same operations in the same order, so the same bits.
-// kEven: the slices are evenly spaced (ShearResolveTables::d_step), so the
-// view depth is computed rather than gathered. A full block's pixels go to
-// the images straight from the registers.
-template <bool kTerrain, bool kSky, bool kEven>
-__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const ShearBlock& blk, int H,
-                                                       int j0, int j1, const std::uint32_t* color,
-                                                       const std::uint32_t* slice, Rgb8* out_c, float* out_d,
-                                                       std::size_t W) {
-    const int* fog = reinterpret_cast<const int*>(t.fog->entries());
-    const int* sky_table = reinterpret_cast<const int*>(t.sky);
-    const __m256 fog_step = _mm256_set1_ps(t.fog->inv_step());
-    const __m256 half = _mm256_set1_ps(0.5f), sky_scale = _mm256_set1_ps(float(SkyTable::kEntries - 1));
-    const __m256 one = _mm256_set1_ps(1.0f);
-    const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
-    const __m256i fog_last = _mm256_set1_epi32(FogTable::kEntries), sky_last = _mm256_set1_epi32(SkyTable::kEntries - 1);
-    const __m256i zero = _mm256_setzero_si256(), full = _mm256_set1_epi32(256);
-    const __m256i mask_rb = _mm256_set1_epi32(0xFF00FF), mask_g = _mm256_set1_epi32(0x00FF00);
-    const __m256i fog_rb = _mm256_set1_epi32(int(t.fog_color & 0xFF00FFu));
-    const __m256i fog_g = _mm256_set1_epi32(int(t.fog_color & 0x00FF00u));
-    const __m256i round_rb = _mm256_set1_epi32(0x800080), round_g = _mm256_set1_epi32(0x008000);
-    const bool direct = blk.n == kShearBlock;
-    for (int j = j0; j < j1; ++j) {
-        const float mj = t.row_m[j];
-        const __m256 m = _mm256_set1_ps(mj), m2 = _mm256_set1_ps(mj * mj);
-        const __m256i jv = _mm256_set1_epi32(j);
-        const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
-        const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
-        const std::size_t row = image_row(blk, H, j, W, out_c, out_d);
-        alignas(32) std::uint32_t px[kShearBlock];
-        alignas(32) float zs[kShearBlock];
-        for (int i = 0; i < kShearBlock; i += 8) {
-            const __m256 len = _mm256_sqrt_ps(_mm256_add_ps(_mm256_loadu_ps(blk.len2 + i), m2));
-            const __m256i terrain =
-                kTerrain && kSky
-                    ? _mm256_cmpgt_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(blk.jend + i)), jv)
-                    : _mm256_set1_epi32(kTerrain ? -1 : 0);
-            __m256i fogged = zero, sky = zero;
-            __m256 z = one;
-            if constexpr (kTerrain) {
-                const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
-                z = _mm256_i32gather_ps(t.slice_depth, k, 4);
-                const __m256 d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
-                                       : _mm256_i32gather_ps(t.slice_d, k, 4);
-                const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), fog_step), half);
-                const __m256i a = _mm256_i32gather_epi32(fog, _mm256_min_epi32(_mm256_cvttps_epi32(x), fog_last), 4);
-                const __m256i b = _mm256_sub_epi32(full, a);
-                const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
-                // fog_blend, lane by lane.
-                const __m256i rb = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_and_si256(c, mask_rb), a),
-                                                    _mm256_add_epi32(_mm256_mullo_epi32(fog_rb, b), round_rb));
-                const __m256i g = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_and_si256(c, mask_g), a),
-                                                   _mm256_add_epi32(_mm256_mullo_epi32(fog_g, b), round_g));
-                fogged = _mm256_or_si256(_mm256_and_si256(_mm256_srli_epi32(rb, 8), mask_rb),
-                                         _mm256_and_si256(_mm256_srli_epi32(g, 8), mask_g));
-            }
-            if constexpr (kSky) {
-                const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_div_ps(m, len), sky_scale), half);
-                const __m256i e = _mm256_max_epi32(_mm256_min_epi32(_mm256_cvttps_epi32(x), sky_last), zero);
-                sky = _mm256_i32gather_epi32(sky_table, e, 4);
-            }
-            store_lanes(_mm256_blendv_epi8(sky, fogged, terrain), _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain)),
-                        i, direct, px, zs, out_c + row, out_d + row);
+// The pixels of 8 lanes, GL_EXP fog and sky gradient: resolve_rows_portable's
+// operations lane by lane. m: the row's slope; len, d: each lane's ray length
+// per unit of view depth and view depth; c: the surface colors.
+struct FogLanes {
+    const ShearResolveTables& t;
+
+    template <bool kTerrain, bool kSky>
+    __attribute__((target("avx2"))) __m256i shade(const ShearBlock&, int, __m256 m, __m256 len, __m256 d, __m256i terrain,
+                                                  __m256i c) const {
+        const __m256 half = _mm256_set1_ps(0.5f);
+        __m256i fogged = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
+        if constexpr (kTerrain) {
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_set1_ps(t.fog->inv_step())), half);
+            const __m256i a = _mm256_i32gather_epi32(
+                reinterpret_cast<const int*>(t.fog->entries()),
+                _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(FogTable::kEntries)), 4);
+            const __m256i b = _mm256_sub_epi32(_mm256_set1_epi32(256), a);
+            const __m256i mask_rb = _mm256_set1_epi32(0xFF00FF), mask_g = _mm256_set1_epi32(0x00FF00);
+            // fog_blend, lane by lane.
+            const __m256i rb = _mm256_add_epi32(
+                _mm256_mullo_epi32(_mm256_and_si256(c, mask_rb), a),
+                _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int(t.fog_color & 0xFF00FFu)), b),
+                                 _mm256_set1_epi32(0x800080)));
+            const __m256i g = _mm256_add_epi32(
+                _mm256_mullo_epi32(_mm256_and_si256(c, mask_g), a),
+                _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int(t.fog_color & 0x00FF00u)), b),
+                                 _mm256_set1_epi32(0x008000)));
+            fogged = _mm256_or_si256(_mm256_and_si256(_mm256_srli_epi32(rb, 8), mask_rb),
+                                     _mm256_and_si256(_mm256_srli_epi32(g, 8), mask_g));
         }
-        if (!direct) write_run(px, zs, blk.n, out_c + row, out_d + row);
+        if constexpr (kSky) {
+            const __m256 x = _mm256_add_ps(
+                _mm256_mul_ps(_mm256_div_ps(m, len), _mm256_set1_ps(float(SkyTable::kEntries - 1))), half);
+            const __m256i e = _mm256_max_epi32(
+                _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(SkyTable::kEntries - 1)), _mm256_setzero_si256());
+            sky = _mm256_i32gather_epi32(reinterpret_cast<const int*>(t.sky), e, 4);
+        }
+        return _mm256_blendv_epi8(sky, fogged, terrain);
     }
-}
+};
 
 // AerialTables::clamp_index, lane by lane.
-__attribute__((target("avx2"))) inline __m256i index(__m256 x, __m256 last) {
-    return _mm256_cvttps_epi32(_mm256_min_ps(_mm256_max_ps(x, _mm256_setzero_ps()), last));
+__attribute__((target("avx2"))) inline __m256i clamp_lanes(__m256 x, float last) {
+    return _mm256_cvttps_epi32(_mm256_min_ps(_mm256_max_ps(x, _mm256_setzero_ps()), _mm256_set1_ps(last)));
 }
 
 // AerialTables::blend (and, without the surface's share, shade_sky) of 8
@@ -257,28 +240,62 @@ __attribute__((target("avx2"))) inline __m256i air_blend(__m256i surface, __m256
     return _mm256_or_si256(out_rb, _mm256_slli_epi32(out_g, 8));
 }
 
-// resolve_rows_portable<kTerrain, kSky, true> with AVX2 gathers: the same
-// operations in the same order (AerialTables' lookups and blends), so the
-// same bits.
-template <bool kTerrain, bool kSky, bool kEven>
-__attribute__((target("avx2"))) void resolve_air_rows_avx2(const ShearResolveTables& t, const ShearBlock& blk,
-                                                           int H, int j0, int j1, const std::uint32_t* color,
-                                                           const std::uint32_t* slice, Rgb8* out_c, float* out_d,
-                                                           std::size_t W) {
-    const AerialTables& air = *t.air;
-    const float* column = air.column();
-    const int* transmit = reinterpret_cast<const int*>(air.transmit());
-    const int* haze = reinterpret_cast<const int*>(air.haze());
-    const int* opacity = reinterpret_cast<const int*>(air.opacity());
-    const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
+// The pixels of 8 lanes through the air (t.air): AerialTables' lookups and
+// blends lane by lane, as FogLanes.
+struct AirLanes {
+    const ShearResolveTables& t;
+
+    template <bool kTerrain, bool kSky>
+    __attribute__((target("avx2"))) __m256i shade(const ShearBlock& blk, int i, __m256 m, __m256 len, __m256 d,
+                                                  __m256i terrain, __m256i c) const {
+        const AerialTables& air = *t.air;
+        const __m256 half = _mm256_set1_ps(0.5f);
+        const __m256 cos_sun = _mm256_div_ps(
+            _mm256_add_ps(_mm256_loadu_ps(blk.sun_dot + i), _mm256_mul_ps(m, _mm256_set1_ps(t.sun_y))), len);
+        const __m256i p = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(cos_sun, _mm256_set1_ps(1.0f)),
+                                                            _mm256_set1_ps(AerialTables::kPhaseScale)),
+                                              half),
+                                float(AerialTables::kPhases - 1));
+        const __m256i h = _mm256_i32gather_epi32(reinterpret_cast<const int*>(air.haze()), p, 4);
+        __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
+        if constexpr (kTerrain) {
+            const __m256 dy = _mm256_mul_ps(d, m);
+            const __m256i hj = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, _mm256_set1_ps(air.dy_lo())),
+                                                                 _mm256_set1_ps(air.inv_dy_step())),
+                                                   half),
+                                     float(AerialTables::kHeights - 1));
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_i32gather_ps(air.column(), hj, 4)),
+                                           half);
+            const __m256i w = _mm256_i32gather_epi32(
+                reinterpret_cast<const int*>(air.transmit()),
+                _mm256_cvttps_epi32(_mm256_min_ps(x, _mm256_set1_ps(float(AerialTables::kColumns)))), 4);
+            lit = air_blend(c, w, h);
+        }
+        if constexpr (kSky) {
+            const __m256i q = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_div_ps(m, len),
+                                                                _mm256_set1_ps(float(AerialTables::kSkies - 1))),
+                                                  half),
+                                    float(AerialTables::kSkies - 1));
+            sky = air_blend(_mm256_setzero_si256(),
+                            _mm256_i32gather_epi32(reinterpret_cast<const int*>(air.opacity()), q, 4), h, false);
+        }
+        return _mm256_blendv_epi8(sky, lit, terrain);
+    }
+};
+
+// resolve_rows_portable with AVX2 gathers (GCC does not emit them for generic
+// x86-64 tuning): the same operations in the same order, so the same bits;
+// the pixels of each 8 lanes come from `lanes` (FogLanes or AirLanes).
+// kEven: the slices are evenly spaced (ShearResolveTables::d_step), so the
+// view depth is computed rather than gathered. A full block's pixels go to
+// the images straight from the registers.
+template <bool kTerrain, bool kSky, bool kEven, class Lanes>
+__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const Lanes& lanes,
+                                                       const ShearBlock& blk, int H, int j0, int j1,
+                                                       const std::uint32_t* color, const std::uint32_t* slice,
+                                                       Rgb8* out_c, float* out_d, std::size_t W) {
+    const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
-    const __m256 sun_y = _mm256_set1_ps(t.sun_y);
-    const __m256 dy_lo = _mm256_set1_ps(air.dy_lo()), inv_dy = _mm256_set1_ps(air.inv_dy_step());
-    const __m256 last_height = _mm256_set1_ps(float(AerialTables::kHeights - 1));
-    const __m256 last_column = _mm256_set1_ps(float(AerialTables::kColumns));
-    const __m256 phase_scale = _mm256_set1_ps(AerialTables::kPhaseScale);
-    const __m256 last_phase = _mm256_set1_ps(float(AerialTables::kPhases - 1));
-    const __m256 last_sky = _mm256_set1_ps(float(AerialTables::kSkies - 1));
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
         const float mj = t.row_m[j];
@@ -295,33 +312,38 @@ __attribute__((target("avx2"))) void resolve_air_rows_avx2(const ShearResolveTab
                 kTerrain && kSky
                     ? _mm256_cmpgt_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(blk.jend + i)), jv)
                     : _mm256_set1_epi32(kTerrain ? -1 : 0);
-            const __m256 cos_sun =
-                _mm256_div_ps(_mm256_add_ps(_mm256_loadu_ps(blk.sun_dot + i), _mm256_mul_ps(m, sun_y)), len);
-            const __m256i p = index(_mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(cos_sun, one), phase_scale), half),
-                                    last_phase);
-            const __m256i h = _mm256_i32gather_epi32(haze, p, 4);
-            __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
-            __m256 z = one;
+            __m256 z = one, d = one;
+            __m256i c = _mm256_setzero_si256();
             if constexpr (kTerrain) {
+                // Sky lanes read slice 0 (their entries are stale).
                 const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
                 z = _mm256_i32gather_ps(t.slice_depth, k, 4);
-                const __m256 d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
-                                       : _mm256_i32gather_ps(t.slice_d, k, 4);
-                const __m256 dist = _mm256_mul_ps(d, len), dy = _mm256_mul_ps(d, m);
-                const __m256i hj = index(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, dy_lo), inv_dy), half), last_height);
-                const __m256 x = _mm256_add_ps(_mm256_mul_ps(dist, _mm256_i32gather_ps(column, hj, 4)), half);
-                const __m256i w = _mm256_i32gather_epi32(transmit, _mm256_cvttps_epi32(_mm256_min_ps(x, last_column)), 4);
-                lit = air_blend(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i)), w, h);
+                d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
+                          : _mm256_i32gather_ps(t.slice_d, k, 4);
+                c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
             }
-            if constexpr (kSky) {
-                const __m256i q = index(_mm256_add_ps(_mm256_mul_ps(_mm256_div_ps(m, len), last_sky), half), last_sky);
-                sky = air_blend(_mm256_setzero_si256(), _mm256_i32gather_epi32(opacity, q, 4), h, false);
-            }
-            store_lanes(_mm256_blendv_epi8(sky, lit, terrain), _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain)), i,
-                        direct, px, zs, out_c + row, out_d + row);
+            store_lanes(lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c),
+                        _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain)), i, direct, px, zs, out_c + row,
+                        out_d + row);
         }
         if (!direct) write_run(px, zs, blk.n, out_c + row, out_d + row);
     }
+}
+
+// The block's rows with the AVX2 kernel: all terrain below every column's
+// horizon (jmin), both up to the highest (jmax), all sky above.
+template <class Lanes>
+void resolve_block_avx2(const ShearResolveTables& t, const Lanes& lanes, const ShearBlock& blk, int H, int jmin,
+                        int jmax, const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                        std::size_t W) {
+    if (t.d_step > 0.0f) {
+        resolve_rows_avx2<true, false, true>(t, lanes, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+        resolve_rows_avx2<true, true, true>(t, lanes, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    } else {
+        resolve_rows_avx2<true, false, false>(t, lanes, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+        resolve_rows_avx2<true, true, false>(t, lanes, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    }
+    resolve_rows_avx2<false, true, false>(t, lanes, blk, H, jmax, H, color, slice, out_c, out_d, W);
 }
 #endif
 
@@ -352,38 +374,14 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     static const bool avx2 = resolve_kernel_available(ResolveKernel::Avx2);
     if (kernel == ResolveKernel::Auto) kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
 #if OVERFLIGHT_RESOLVE_AVX2
-    if (kernel == ResolveKernel::Avx2 && t.air) {
-        if (t.d_step > 0.0f) {
-            resolve_air_rows_avx2<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-            resolve_air_rows_avx2<true, true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-        } else {
-            resolve_air_rows_avx2<true, false, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-            resolve_air_rows_avx2<true, true, false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-        }
-        resolve_air_rows_avx2<false, true, false>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
-        return;
-    }
     if (kernel == ResolveKernel::Avx2) {
-        if (t.d_step > 0.0f) {
-            resolve_rows_avx2<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-            resolve_rows_avx2<true, true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-        } else {
-            resolve_rows_avx2<true, false, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-            resolve_rows_avx2<true, true, false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-        }
-        resolve_rows_avx2<false, true, false>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+        if (t.air) resolve_block_avx2(t, AirLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        else resolve_block_avx2(t, FogLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         return;
     }
 #endif
-    if (t.air) {
-        resolve_rows_portable<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-        resolve_rows_portable<true, true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-        resolve_rows_portable<false, true, true>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
-        return;
-    }
-    resolve_rows_portable<true, false, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-    resolve_rows_portable<true, true, false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-    resolve_rows_portable<false, true, false>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+    if (t.air) resolve_block_portable<true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    else resolve_block_portable<false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
 }
 
 } // namespace overflight
