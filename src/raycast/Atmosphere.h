@@ -1,5 +1,5 @@
 #pragma once
-// Sky and fog shared by every terrain ray caster (fast, literal, reference),
+// Sky, fog and atmosphere shared by every terrain ray caster (fast, literal, reference),
 // so that voxel images match the mesh renderers pixel for pixel.
 //
 // Based on: the hovercraft project (CMSC 23700 project 2a), "GL_EXP fog and skybox", and
@@ -11,7 +11,10 @@
 //               |P - eye| of the surface point hit through the pixel centre
 //               (GLSL: length(eye_pos)), color = f * surface + (1 - f) * fog;
 //   sky         mix(sky_horizon, sky_zenith, clamp(sin(elevation), 0, 1)),
-//               elevation of the pixel-centre ray; no fog on the sky.
+//               elevation of the pixel-centre ray; no fog on the sky;
+//   atmosphere  (Environment::atmosphere, instead of both) the aerial
+//               perspective and sky of core/AerialPerspective.h, exactly
+//               (aerial_rgb) or from per-frame tables (AerialTables).
 #include "core/AerialPerspective.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
