@@ -10,6 +10,8 @@ namespace overflight::app {
 
 struct LookArgs {
     bool atmosphere = false; // --atmosphere
+    // Whether any look was asked for.
+    bool any() const { return atmosphere; }
 };
 
 // Adds the switches to `cmd`; `what` ends each one's help (e.g. ", also timed

@@ -328,8 +328,7 @@ void add_bench_command(CLI::App& app) {
         // With looks, each method is timed as the data set is and with them,
         // in this run: their cost is the ratio of the two rows.
         std::vector<Environment> envs{data.environment};
-        if (const Environment looks = with_looks(args->looks, data.environment); looks.atmosphere != envs[0].atmosphere)
-            envs.push_back(looks);
+        if (args->looks.any()) envs.push_back(with_looks(args->looks, data.environment));
         for (const MethodEntry* m : methods)
             for (nlohmann::json& run : bench_method(*m, session, camera, args->frames, full_mesh_depth, envs))
                 runs.push_back(std::move(run));
