@@ -65,7 +65,7 @@ Scene objects_of(const DataSet& data, const std::string& scene_file) {
 } // namespace
 
 RenderSession::RenderSession(const DataSet& data, const MethodOptions& options, std::string tile_dir)
-    : data_(data), settings_(options.settings()), scene_(objects_of(data, options.scene)),
+    : data_(data), environment_(data.environment), settings_(options.settings()), scene_(objects_of(data, options.scene)),
       tile_dir_(std::move(tile_dir)), context_{data.terrain, settings_, {}} {
     if (!tile_dir_.empty())
         context_.tiles = [dir = tile_dir_, bound = settings_.cache_bytes] { return tile_directory_tiles(dir, bound); };
@@ -82,7 +82,7 @@ std::unique_ptr<TerrainMethod> RenderSession::create(const MethodEntry& row) {
 
 void RenderSession::render(const MethodEntry& row, TerrainMethod& method, const Camera& camera, bool want_depth,
                            RenderedView& view) {
-    view.output = method.produce(MethodView{camera, data_.environment, std::nullopt}, view.method);
+    view.output = method.produce(MethodView{camera, environment_, std::nullopt}, view.method);
     const MethodOutput& out = view.output;
     view.composited = !(out.kind == MethodOutputKind::Images && row.composite == Composite::None);
     if (!view.composited) {
@@ -93,7 +93,7 @@ void RenderSession::render(const MethodEntry& row, TerrainMethod& method, const 
     if (!gl_) gl_ = std::make_unique<gl::HeadlessRenderer>(data_.terrain, scene_);
     gl::CompositeOptions options;
     options.objects = out.kind != MethodOutputKind::Images || row.composite == Composite::Objects;
-    gl_->render(out, camera, data_.environment, options, color_, want_depth ? &depth_ : nullptr, &view.gl);
+    gl_->render(out, camera, environment_, options, color_, want_depth ? &depth_ : nullptr, &view.gl);
     view.color = &color_;
     view.depth = want_depth ? &depth_ : nullptr;
 }

@@ -59,6 +59,9 @@ public:
     ~RenderSession();
 
     const DataSet& data() const { return data_; }
+    // The environment the views are rendered in (the data set's unless set).
+    const Environment& environment() const { return environment_; }
+    void set_environment(const Environment& env) { environment_ = env; }
     const MethodSettings& settings() const { return settings_; }
     bool has_objects() const { return !scene_.empty(); }
     const std::string& tile_dir() const { return tile_dir_; }
@@ -72,6 +75,7 @@ public:
 
 private:
     const DataSet& data_;
+    Environment environment_;
     MethodSettings settings_;
     Scene scene_;
     std::string tile_dir_;

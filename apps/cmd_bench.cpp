@@ -6,6 +6,7 @@
 // (CMSC 23700 project 2a), and Zamri's accuracy of the LOD meshes against the full mesh.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "LookOptions.h"
 #include "OptionValues.h"
 #include "RenderSession.h"
 #include "RoamBench.h"
@@ -43,42 +44,70 @@ constexpr double kMethodBudgetMs = 15000.0;
 void add_accuracy(nlohmann::json& run, const MethodEntry& m, RenderSession& session, const Camera& camera,
                   const DepthImage& mesh_depth);
 
-// Times `frames` frames of `m` after a warm-up. A mesh method is also measured
-// against the full mesh's depth when `full_mesh_depth` gives one.
-nlohmann::json bench_method(const MethodEntry& m, RenderSession& session, const Camera& camera, int frames,
-                            const std::function<const DepthImage*()>& full_mesh_depth) {
-    std::unique_ptr<TerrainMethod> method = session.create(m);
-    RenderedView view;
-    session.render(m, *method, camera, false, view); // warm-up: first-touch of buffers, pyramids, uploads
+// What the timed frames of one environment gave: wall-clock ms and each
+// step's ms per frame, and the last frame's stats.
+struct TimedFrames {
     std::vector<double> ms;
     std::map<std::string, std::vector<double>> steps;
     nlohmann::json stats;
-    double spent = 0;
-    for (int f = 0; f < frames && (f < 3 || spent < kMethodBudgetMs); ++f) {
-        const auto t0 = std::chrono::steady_clock::now();
-        session.render(m, *method, camera, false, view); // timed frames do not read the depth back
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-        spent += ms.back();
-        stats = view_stats_json(session.settings(), camera, view);
-        for (const auto& [step, v] : stats["ms"].items()) steps[step].push_back(v.get<double>());
-    }
-    const double med = median(ms);
-    nlohmann::json run = {{"method", m.name},
+};
+
+// A run's JSON row from its frames (medians).
+nlohmann::json run_row(const std::string& name, const TimedFrames& t, const Camera& camera) {
+    const double med = median(t.ms);
+    nlohmann::json run = {{"method", name},
                           {"width", camera.width},
                           {"height", camera.height},
-                          {"frames", int(ms.size())},
+                          {"frames", int(t.ms.size())},
                           {"ms_median", med},
-                          {"ms_min", *std::min_element(ms.begin(), ms.end())},
+                          {"ms_min", *std::min_element(t.ms.begin(), t.ms.end())},
                           {"fps", 1000.0 / med}};
-    for (const auto& [step, v] : steps) run["steps_ms"][step] = median(v);
-    if (stats.contains("samples")) {
-        run["samples"] = stats["samples"];
-        run["samples_visited"] = stats["samples_visited"];
+    for (const auto& [step, v] : t.steps) run["steps_ms"][step] = median(v);
+    if (t.stats.contains("samples")) {
+        run["samples"] = t.stats["samples"];
+        run["samples_visited"] = t.stats["samples_visited"];
         const double cast = run["steps_ms"].value("raycast", med);
-        run["ns_per_sample"] = cast * 1e6 / stats["samples"].get<double>();
+        run["ns_per_sample"] = cast * 1e6 / t.stats["samples"].get<double>();
     }
-    if (stats.contains("triangles")) run["triangles"] = stats["triangles"];
-    run["stats"] = stats;
+    if (t.stats.contains("triangles")) run["triangles"] = t.stats["triangles"];
+    run["stats"] = t.stats;
+    return run;
+}
+
+// Times `frames` frames of `m` after a warm-up, one row per environment of
+// `envs`: the session's own, then with the looks asked for (METHOD+looks,
+// with its ratio to the first). The environments take turns frame by frame,
+// so that a shared machine's load weighs on both alike. A mesh method is also
+// measured against the full mesh's depth when `full_mesh_depth` gives one.
+std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& session, const Camera& camera,
+                                         int frames, const std::function<const DepthImage*()>& full_mesh_depth,
+                                         const std::vector<Environment>& envs) {
+    std::unique_ptr<TerrainMethod> method = session.create(m);
+    RenderedView view;
+    for (const Environment& env : envs) { // warm-up: first-touch of buffers, pyramids, uploads, tables
+        session.set_environment(env);
+        session.render(m, *method, camera, false, view);
+    }
+    std::vector<TimedFrames> timed(envs.size());
+    double spent = 0;
+    for (int f = 0; f < frames && (f < 3 || spent < kMethodBudgetMs); ++f)
+        for (std::size_t e = 0; e < envs.size(); ++e) {
+            session.set_environment(envs[e]);
+            TimedFrames& t = timed[e];
+            const auto t0 = std::chrono::steady_clock::now();
+            session.render(m, *method, camera, false, view); // timed frames do not read the depth back
+            t.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+            spent += t.ms.back();
+            t.stats = view_stats_json(session.settings(), camera, view);
+            for (const auto& [step, v] : t.stats["ms"].items()) t.steps[step].push_back(v.get<double>());
+        }
+    session.set_environment(envs.front());
+    std::vector<nlohmann::json> runs;
+    for (std::size_t e = 0; e < envs.size(); ++e) {
+        runs.push_back(run_row(e ? std::string(m.name) + "+looks" : std::string(m.name), timed[e], camera));
+        if (e) runs.back()["x_without_looks"] = median(timed[e].ms) / median(timed[0].ms);
+    }
+    nlohmann::json& run = runs.front();
     if (view.method.roam) {
         const nlohmann::json roam = roam_bench(session.data().terrain, camera);
         run["triangles_per_s"] = roam["triangles_per_s"];
@@ -87,7 +116,7 @@ nlohmann::json bench_method(const MethodEntry& m, RenderSession& session, const 
     }
     if (method->output_kind() == MethodOutputKind::Mesh)
         if (const DepthImage* depth = full_mesh_depth()) add_accuracy(run, m, session, camera, *depth);
-    return run;
+    return runs;
 }
 
 // Zamri's figures for a LOD mesh against full resolution (the terrain in
@@ -147,6 +176,10 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
                     r.contains("depth_within_3pct") ? fmt("%.2f %%", 100.0 * r["depth_within_3pct"].get<double>()).c_str()
                                                     : "-");
     }
+    for (const auto& r : runs)
+        if (r.contains("x_without_looks"))
+            std::printf("%s / without = %.3fx\n", r["method"].get<std::string>().c_str(),
+                        r["x_without_looks"].get<double>());
     const nlohmann::json* with = find_run(runs, "voxel+objects");
     const nlohmann::json* without = find_run(runs, "voxel+present");
     if (with || without) {
@@ -224,6 +257,7 @@ void add_bench_command(CLI::App& app) {
         TerrainArgs terrain;
         CameraArgs camera;
         MethodOptions methods;
+        LookArgs looks;
         std::string method_names;
         int frames = 10;
         int threads = 0;
@@ -236,6 +270,7 @@ void add_bench_command(CLI::App& app) {
     add_max_direct_size_option(*cmd, args->terrain);
     add_camera_options(*cmd, args->camera);
     add_method_options(*cmd, args->methods);
+    add_look_options(*cmd, args->looks, "; each method is also timed without it (METHOD and METHOD+looks rows)");
     cmd->add_option("--frames", args->frames,
                     "timed frames per method after one warm-up frame (a method slower than 15 s in all stops at 3)")
         ->transform(decimal<int>())
@@ -291,10 +326,13 @@ void add_bench_command(CLI::App& app) {
             }
             return &*mesh_depth;
         };
-        for (const MethodEntry* m : methods) {
-            nlohmann::json run = bench_method(*m, session, camera, args->frames, full_mesh_depth);
-            runs.push_back(std::move(run));
-        }
+        // With looks, each method is timed as the data set is and with them,
+        // in this run: their cost is the ratio of the two rows.
+        std::vector<Environment> envs{data.environment};
+        if (args->looks.any()) envs.push_back(with_looks(args->looks, data.environment));
+        for (const MethodEntry* m : methods)
+            for (nlohmann::json& run : bench_method(*m, session, camera, args->frames, full_mesh_depth, envs))
+                runs.push_back(std::move(run));
         const nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},
                                     {"rows", data.terrain.rows()},
                                     {"cols", data.terrain.cols()},

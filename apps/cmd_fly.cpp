@@ -15,6 +15,7 @@
 //   method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step
 // the last column as "step:ms;step:ms;..." (mean over the timed frames).
 #include "Commands.h"
+#include "LookOptions.h"
 #include "OptionValues.h"
 #include "RenderSession.h"
 #include "TerrainOptions.h"
@@ -42,6 +43,7 @@ namespace {
 
 struct FlyOptions {
     TerrainArgs terrain;
+    LookArgs looks;
     std::string scene, method = "mesh", record, replay, out, screenshot, video, size = "1280x720";
     long long frames = 0;
     int cache_mib = MethodSettings::kDefaultCacheMib;
@@ -157,6 +159,7 @@ void run_fly(const FlyOptions& o) {
     MethodSettings settings;
     settings.cache_bytes = tile_cache_bytes(o.cache_mib);
     DataSet data = load_terrain_lazily(o.terrain);
+    data.environment = with_looks(o.looks, data.environment);
     if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
     MethodContext methods{data.terrain, settings, {}};
     if (is_tile_directory(o.terrain.terrain))
@@ -202,6 +205,7 @@ void add_fly_command(CLI::App& app) {
     add_terrain_options(*sub, o->terrain);
     add_max_direct_size_option(*sub, o->terrain);
     sub->add_option("--scene", o->scene, "Scene TOML with objects to add");
+    add_look_options(*sub, o->looks, " (f cycles: off, GL_EXP fog, atmosphere)");
     sub->add_option("--method", o->method,
                     "Terrain method shown first (" + terrain_method_names() + "; Tab cycles " +
                         terrain_method_names(" -> ", true) + "); with --replay, the one that renders")

@@ -4,6 +4,7 @@
 // depth TIFF), with timings and counts as one JSON object on stdout.
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "LookOptions.h"
 #include "OptionValues.h"
 #include "RenderSession.h"
 #include "StandardOutput.h"
@@ -30,6 +31,7 @@ void add_render_command(CLI::App& app) {
         TerrainArgs terrain;
         CameraArgs camera;
         MethodOptions methods;
+        LookArgs looks;
         std::string out, depth, method = "voxel";
         bool stats = false;
     };
@@ -41,6 +43,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--method", args->method, "terrain renderer: " + terrain_method_names())->capture_default_str();
     add_camera_options(*cmd, args->camera);
     add_method_options(*cmd, args->methods);
+    add_look_options(*cmd, args->looks);
     cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
     cmd->callback([args, cmd] {
@@ -56,6 +59,7 @@ void add_render_command(CLI::App& app) {
         const double ms_load = ms_since(t0);
         const Camera camera = make_camera(args->camera, data, 1280, 720);
         RenderSession session(data, args->methods, tiles ? args->terrain.terrain : std::string());
+        session.set_environment(with_looks(args->looks, data.environment));
         // A user's `voxel` view shows the objects: Szenberg's composite.
         if (args->method == "voxel" && session.has_objects()) row = find_terrain_method("voxel+objects");
         std::unique_ptr<TerrainMethod> method = session.create(*row);

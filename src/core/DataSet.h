@@ -14,6 +14,20 @@
 
 namespace overflight {
 
+// An exponential-height atmosphere (Hoffman, Preetham, "Rendering Outdoor
+// Light Scattering in Real Time", GDC 2002, with their constant density made
+// exp(-y / scale_height)): air and haze as one mixture whose extinction equals
+// its scattering, Rayleigh-like per channel plus grey haze (Mie), in units of
+// 1 / world unit at height 0. core/AerialPerspective.h evaluates it.
+struct AtmosphereParams {
+    glm::vec3 rayleigh{11.6e-6f, 27.0e-6f, 66.2e-6f}; // twice sea-level air's (Bucholtz 1995), for a thicker scale height
+    float haze = 1.2e-5f;          // Mie scattering of the haze, every channel
+    float scale_height = 4000.0f;  // density exp(-y / scale_height), y world height
+    float haze_g = 0.7f;           // Henyey-Greenstein asymmetry of the haze
+    float exposure = 2.0f;         // in-scattered sunlight to display: 1 - exp(-exposure L), then gamma 2.2
+    glm::vec3 sunlight{1.0f, 1.0f, 1.0f}; // above the atmosphere (the lighting's sun_color may be switched off)
+};
+
 struct Environment {
     glm::vec3 sun_dir{0.3f, 0.8f, 0.5f};   // towards the sun, world space (normalised on use)
     glm::vec3 sun_color{1.0f, 0.96f, 0.9f};
@@ -22,6 +36,10 @@ struct Environment {
     glm::vec3 fog_color{0.72f, 0.80f, 0.90f};
     glm::vec3 sky_zenith{0.30f, 0.50f, 0.85f};
     glm::vec3 sky_horizon{0.72f, 0.80f, 0.90f};
+    // Aerial perspective and a sky that follows the sun (AtmosphereParams)
+    // instead of the GL_EXP fog and the sky gradient above.
+    bool atmosphere = false;
+    AtmosphereParams air;
 };
 
 struct VehicleStart {

@@ -45,7 +45,7 @@ void Hud::draw(const HudInfo& info) {
         ImGui::Text("triangles %lld  objects %lld", info.triangles, info.object_triangles);
         ImGui::Text("position %.1f, %.1f, %.1f", info.position.x, info.position.y, info.position.z);
         ImGui::Text("speed %.2f m/s  heading %.1f", info.speed, info.heading);
-        ImGui::Text("fog %s  light %s  wire %s", info.fog ? "on" : "off", info.lighting ? "on" : "off",
+        ImGui::Text("fog %s  light %s  wire %s", info.fog, info.lighting ? "on" : "off",
                     info.wireframe ? "on" : "off");
         ImGui::TextDisabled("arrows fly  f 1 W  + _  Tab P H q");
         ImGui::End();

@@ -8,7 +8,7 @@
 namespace overflight {
 
 CastTerrain::CastTerrain(const Terrain& t)
-    : terrain(t), max_height(t.max_height()), max_pyramid(t, kRunLevels, false) {
+    : terrain(t), max_height(t.max_height()), min_height(t.min_height()), max_pyramid(t, kRunLevels, false) {
     colors.resize(t.colors().size());
     for (std::size_t i = 0; i < colors.size(); ++i) colors[i] = pack_rgb(t.colors()[i]);
     level_heights[0] = t.heights().data();

@@ -44,6 +44,7 @@ struct CastTerrain {
 
     const Terrain& terrain;
     float max_height = 0; // world, over all samples
+    float min_height = 0; // world, over all samples (the aerial perspective's height range)
     std::vector<std::uint32_t> colors;
     HeightPyramid max_pyramid; // heights only: run skipping
     std::unique_ptr<HeightPyramid> lod_pyramid;
