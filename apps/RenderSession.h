@@ -59,9 +59,9 @@ public:
     ~RenderSession();
 
     const DataSet& data() const { return data_; }
-    // The sun, fog and sky the views are rendered with: the data set's until set.
+    // The environment the views are rendered in (the data set's unless set).
     const Environment& environment() const { return environment_; }
-    void set_environment(const Environment& environment) { environment_ = environment; }
+    void set_environment(const Environment& env) { environment_ = env; }
     const MethodSettings& settings() const { return settings_; }
     bool has_objects() const { return !scene_.empty(); }
     const std::string& tile_dir() const { return tile_dir_; }

@@ -20,7 +20,27 @@ void add_terrain_options(CLI::App& cmd, TerrainArgs& args) {
         ->capture_default_str();
 }
 
+void add_max_direct_size_option(CLI::App& cmd, TerrainArgs& args) {
+    args.load.max_direct_size = kDefaultMaxDirectSize;
+    cmd.add_option("--max-direct-size", args.load.max_direct_size,
+                   "a raster with more samples per side is read decimated (block means, through its overviews) to at "
+                   "most this many; `overflight tile` keeps the full resolution (2..65537)")
+        ->transform(decimal<int>())
+        ->capture_default_str();
+}
+
 namespace {
+
+// The grid size up to which `info` loads a raster to report exact figures,
+// which takes about a second on the development machine (a reprojected one
+// longer); larger ones are surveyed.
+constexpr long long kInfoExactSamples = 1025LL * 1025LL;
+
+void check_max_direct_size(const TerrainArgs& args) {
+    const int n = args.load.max_direct_size;
+    if (n != 0 && (n < 2 || n > 65537))
+        throw Error("--max-direct-size", std::to_string(n) + " is not a side in 2..65537 samples");
+}
 
 DataSet reported(DataSet data, const TerrainArgs& args) {
     if (args.warnings_on_stderr)
@@ -32,6 +52,7 @@ DataSet reported(DataSet data, const TerrainArgs& args) {
 } // namespace
 
 DataSet load_terrain(const TerrainArgs& args) {
+    check_max_direct_size(args);
     const LoadingScope loading(args.terrain);
     return reported(overflight::load_terrain(args.terrain, args.load), args);
 }
@@ -41,6 +62,12 @@ DataSet load_terrain_lazily(const TerrainArgs& args) {
     if (!args.load.color_path.empty()) throw Error("--color", "a tile directory brings its own colors");
     const LoadingScope loading(args.terrain);
     return reported(load_tile_directory_overview(args.terrain), args);
+}
+
+TerrainDescription describe_terrain_lazily(const TerrainArgs& args) {
+    if (is_tile_directory(args.terrain)) return describe(load_terrain_lazily(args));
+    const LoadingScope loading(args.terrain);
+    return overflight::describe_terrain(args.terrain, args.load, kInfoExactSamples);
 }
 
 } // namespace overflight::app

@@ -14,7 +14,7 @@ namespace overflight::app {
 
 struct TerrainArgs {
     std::string terrain;     // the positional argument
-    LoadOptions load;        // --color, --demo-size
+    LoadOptions load;        // --color, --demo-size, --max-direct-size
     bool warnings_on_stderr = true; // TerrainInfo::warnings as "overflight: SOURCE: warning: ..." lines (not for info)
 };
 
@@ -22,6 +22,16 @@ struct TerrainArgs {
 // the values land in `args` when the command line is parsed, so `args` must
 // outlive the parse (keep it in a static or a shared_ptr owned by the callback).
 void add_terrain_options(CLI::App& cmd, TerrainArgs& args);
+
+// The default of --max-direct-size: the largest side a terrain is loaded at
+// full resolution by render, bench and fly (8193 = 2^13 + 1 samples, about
+// 1 GiB while loading).
+inline constexpr int kDefaultMaxDirectSize = 8193;
+
+// Adds --max-direct-size N (default kDefaultMaxDirectSize) for the commands
+// that render a terrain loaded whole (render, bench, fly): a GDAL raster with
+// more samples per side is read decimated (load_gdal_raster).
+void add_max_direct_size_option(CLI::App& cmd, TerrainArgs& args);
 
 // load_terrain(args.terrain, args.load), its warnings printed on stderr;
 // throws overflight::Error.
@@ -33,5 +43,11 @@ DataSet load_terrain(const TerrainArgs& args);
 // tiles lazily (quadtree) or that only describe the terrain (info): a terrain
 // larger than memory then stays on disk.
 DataSet load_terrain_lazily(const TerrainArgs& args);
+
+// What `info` reports: the tile directory's overview as load_terrain_lazily,
+// other terrains through describe_terrain (io/LoadTerrain.h): exact figures
+// for a raster of up to about 1025x1025 samples (loaded in about a second),
+// a survey (approximate figures, nothing read whole) for larger ones.
+TerrainDescription describe_terrain_lazily(const TerrainArgs& args);
 
 } // namespace overflight::app

@@ -46,42 +46,70 @@ constexpr double kMethodBudgetMs = 15000.0;
 void add_accuracy(nlohmann::json& run, const MethodEntry& m, RenderSession& session, const Camera& camera,
                   const DepthImage& mesh_depth);
 
-// Times `frames` frames of `m` after a warm-up. A mesh method is also measured
-// against the full mesh's depth when `full_mesh_depth` gives one.
-nlohmann::json bench_method(const MethodEntry& m, RenderSession& session, const Camera& camera, int frames,
-                            const std::function<const DepthImage*()>& full_mesh_depth) {
-    std::unique_ptr<TerrainMethod> method = session.create(m);
-    RenderedView view;
-    session.render(m, *method, camera, false, view); // warm-up: first-touch of buffers, pyramids, uploads
+// What the timed frames of one environment gave: wall-clock ms and each
+// step's ms per frame, and the last frame's stats.
+struct TimedFrames {
     std::vector<double> ms;
     std::map<std::string, std::vector<double>> steps;
     nlohmann::json stats;
-    double spent = 0;
-    for (int f = 0; f < frames && (f < 3 || spent < kMethodBudgetMs); ++f) {
-        const auto t0 = std::chrono::steady_clock::now();
-        session.render(m, *method, camera, false, view); // timed frames do not read the depth back
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-        spent += ms.back();
-        stats = view_stats_json(session.settings(), camera, view);
-        for (const auto& [step, v] : stats["ms"].items()) steps[step].push_back(v.get<double>());
-    }
-    const double med = median(ms);
-    nlohmann::json run = {{"method", m.name},
+};
+
+// A run's JSON row from its frames (medians).
+nlohmann::json run_row(const std::string& name, const TimedFrames& t, const Camera& camera) {
+    const double med = median(t.ms);
+    nlohmann::json run = {{"method", name},
                           {"width", camera.width},
                           {"height", camera.height},
-                          {"frames", int(ms.size())},
+                          {"frames", int(t.ms.size())},
                           {"ms_median", med},
-                          {"ms_min", *std::min_element(ms.begin(), ms.end())},
+                          {"ms_min", *std::min_element(t.ms.begin(), t.ms.end())},
                           {"fps", 1000.0 / med}};
-    for (const auto& [step, v] : steps) run["steps_ms"][step] = median(v);
-    if (stats.contains("samples")) {
-        run["samples"] = stats["samples"];
-        run["samples_visited"] = stats["samples_visited"];
+    for (const auto& [step, v] : t.steps) run["steps_ms"][step] = median(v);
+    if (t.stats.contains("samples")) {
+        run["samples"] = t.stats["samples"];
+        run["samples_visited"] = t.stats["samples_visited"];
         const double cast = run["steps_ms"].value("raycast", med);
-        run["ns_per_sample"] = cast * 1e6 / stats["samples"].get<double>();
+        run["ns_per_sample"] = cast * 1e6 / t.stats["samples"].get<double>();
     }
-    if (stats.contains("triangles")) run["triangles"] = stats["triangles"];
-    run["stats"] = stats;
+    if (t.stats.contains("triangles")) run["triangles"] = t.stats["triangles"];
+    run["stats"] = t.stats;
+    return run;
+}
+
+// Times `frames` frames of `m` after a warm-up, one row per environment of
+// `envs`: the session's own, then with the looks asked for (METHOD+looks,
+// with its ratio to the first). The environments take turns frame by frame,
+// so that a shared machine's load weighs on both alike. A mesh method is also
+// measured against the full mesh's depth when `full_mesh_depth` gives one.
+std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& session, const Camera& camera,
+                                         int frames, const std::function<const DepthImage*()>& full_mesh_depth,
+                                         const std::vector<Environment>& envs) {
+    std::unique_ptr<TerrainMethod> method = session.create(m);
+    RenderedView view;
+    for (const Environment& env : envs) { // warm-up: first-touch of buffers, pyramids, uploads, tables
+        session.set_environment(env);
+        session.render(m, *method, camera, false, view);
+    }
+    std::vector<TimedFrames> timed(envs.size());
+    double spent = 0;
+    for (int f = 0; f < frames && (f < 3 || spent < kMethodBudgetMs); ++f)
+        for (std::size_t e = 0; e < envs.size(); ++e) {
+            session.set_environment(envs[e]);
+            TimedFrames& t = timed[e];
+            const auto t0 = std::chrono::steady_clock::now();
+            session.render(m, *method, camera, false, view); // timed frames do not read the depth back
+            t.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+            spent += t.ms.back();
+            t.stats = view_stats_json(session.settings(), camera, view);
+            for (const auto& [step, v] : t.stats["ms"].items()) t.steps[step].push_back(v.get<double>());
+        }
+    session.set_environment(envs.front());
+    std::vector<nlohmann::json> runs;
+    for (std::size_t e = 0; e < envs.size(); ++e) {
+        runs.push_back(run_row(e ? std::string(m.name) + "+looks" : std::string(m.name), timed[e], camera));
+        if (e) runs.back()["x_without_looks"] = median(timed[e].ms) / median(timed[0].ms);
+    }
+    nlohmann::json& run = runs.front();
     if (view.method.roam) {
         const nlohmann::json roam = roam_bench(session.data().terrain, camera);
         run["triangles_per_s"] = roam["triangles_per_s"];
@@ -90,7 +118,7 @@ nlohmann::json bench_method(const MethodEntry& m, RenderSession& session, const 
     }
     if (method->output_kind() == MethodOutputKind::Mesh)
         if (const DepthImage* depth = full_mesh_depth()) add_accuracy(run, m, session, camera, *depth);
-    return run;
+    return runs;
 }
 
 // The sun's cost, measured in the same run as the methods: the horizon sweep
@@ -171,6 +199,10 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
                     r.contains("depth_within_3pct") ? fmt("%.2f %%", 100.0 * r["depth_within_3pct"].get<double>()).c_str()
                                                     : "-");
     }
+    for (const auto& r : runs)
+        if (r.contains("x_without_looks"))
+            std::printf("%s / without = %.3fx\n", r["method"].get<std::string>().c_str(),
+                        r["x_without_looks"].get<double>());
     if (out.contains("sun")) {
         const nlohmann::json& s = out["sun"];
         std::printf("\nSun: lighting %s, shadows %s, sun azimuth %.1f elevation %.1f\n\n",
@@ -179,13 +211,6 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
         std::printf("| step for a new sun direction (median of %d) | ms |\n|---|---:|\n| horizon sweep (shadow ceiling) | %.2f "
                     "|\n| light of every sample | %.2f |\n",
                     s["sun_directions"].get<int>(), s["ms_shadow_sweep"].get<double>(), s["ms_light"].get<double>());
-    }
-    for (const char* name : {"voxel", "voxel-literal"}) {
-        const nlohmann::json* lit = find_run(runs, name);
-        const nlohmann::json* baked = find_run(runs, std::string(name) + " baked");
-        if (lit && baked)
-            std::printf("\n%s lit / %s baked = %.2fx\n", name, name,
-                        (*lit)["ms_median"].get<double>() / (*baked)["ms_median"].get<double>());
     }
     const nlohmann::json* with = find_run(runs, "voxel+objects");
     const nlohmann::json* without = find_run(runs, "voxel+present");
@@ -264,7 +289,7 @@ void add_bench_command(CLI::App& app) {
         TerrainArgs terrain;
         CameraArgs camera;
         MethodOptions methods;
-        LookArgs look;
+        LookArgs looks;
         std::string method_names;
         int frames = 10;
         int threads = 0;
@@ -274,9 +299,10 @@ void add_bench_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "bench", "Time the terrain renderers on one view (default: 1920x1080, far 2048 cells, the overview camera)");
     add_terrain_options(*cmd, args->terrain);
+    add_max_direct_size_option(*cmd, args->terrain);
     add_camera_options(*cmd, args->camera);
     add_method_options(*cmd, args->methods);
-    add_look_options(*cmd, args->look);
+    add_look_options(*cmd, args->looks, "; each method is also timed without it (METHOD and METHOD+looks rows)");
     cmd->add_option("--frames", args->frames,
                     "timed frames per method after one warm-up frame (a method slower than 15 s in all stops at 3)")
         ->transform(decimal<int>())
@@ -311,8 +337,8 @@ void add_bench_command(CLI::App& app) {
         const bool tiles = is_tile_directory(args->terrain.terrain);
         const bool lazy = tiles && std::all_of(methods.begin(), methods.end(),
                                                [](const MethodEntry* m) { return m->reads_tiles; });
-        DataSet data = lazy ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
-        apply_look_options(args->look, data.environment);
+        const DataSet data = lazy ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
+        const Environment looked = with_looks(args->looks, data.environment); // bad values fail before the work
         CameraArgs cam_args = args->camera;
         if (!cam_args.far) cam_args.far = 2048.0 * data.terrain.h_scale(); // "far 2048 samples"
         const Camera camera = make_camera(cam_args, data, 1920, 1080);
@@ -333,27 +359,17 @@ void add_bench_command(CLI::App& app) {
             }
             return &*mesh_depth;
         };
-        for (const MethodEntry* m : methods) {
-            nlohmann::json run = bench_method(*m, session, camera, args->frames, full_mesh_depth);
-            runs.push_back(std::move(run));
-        }
-        // With --shadows, the ray casters again with the papers' baked colors
-        // in the same run: what the light and the shadows cost per frame.
-        if (data.environment.shadows) {
-            Environment baked = data.environment;
-            bake_lighting(baked);
-            baked.shadows = false;
-            session.set_environment(baked);
-            for (const MethodEntry* m : methods) {
-                if (m->create != find_terrain_method("voxel")->create &&
-                    m->create != find_terrain_method("voxel-literal")->create)
-                    continue;
-                nlohmann::json run = bench_method(*m, session, camera, args->frames, full_mesh_depth);
-                run["method"] = std::string(m->name) + " baked";
+        // With looks, each method is timed as the data set is and with them,
+        // in this run: their cost is the ratio of the two rows. With
+        // --shadows the rows without are the papers' baked look, so that the
+        // ratio is the cost of the sun's light and shadows together.
+        Environment without = data.environment;
+        if (args->looks.shadows) bake_lighting(without);
+        std::vector<Environment> envs{without};
+        if (args->looks.any()) envs.push_back(looked);
+        for (const MethodEntry* m : methods)
+            for (nlohmann::json& run : bench_method(*m, session, camera, args->frames, full_mesh_depth, envs))
                 runs.push_back(std::move(run));
-            }
-            session.set_environment(data.environment);
-        }
         nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},
                                     {"rows", data.terrain.rows()},
                                     {"cols", data.terrain.cols()},
@@ -361,12 +377,12 @@ void add_bench_command(CLI::App& app) {
                                     {"far", camera.far},
                                     {"projection", to_string(camera.projection)},
                                     {"runs", runs}};
-        const SunAngles sun = sun_angles(data.environment.sun_dir);
-        out["look"] = {{"lighting", lighting_is_baked(data.environment) ? "baked" : "sun"},
-                       {"shadows", data.environment.shadows},
+        const SunAngles sun = sun_angles(looked.sun_dir);
+        out["look"] = {{"lighting", lighting_is_baked(looked) ? "baked" : "sun"},
+                       {"shadows", looked.shadows},
                        {"sun_azimuth", sun.azimuth},
                        {"sun_elevation", sun.elevation}};
-        if (data.environment.shadows) out["sun"] = bench_sun(data.terrain, data.environment);
+        if (looked.shadows) out["sun"] = bench_sun(data.terrain, looked);
         if (args->json) {
             const std::string text = out.dump() + "\n";
             std::fwrite(text.data(), 1, text.size(), stdout);

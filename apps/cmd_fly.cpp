@@ -44,7 +44,7 @@ namespace {
 
 struct FlyOptions {
     TerrainArgs terrain;
-    LookArgs look;
+    LookArgs looks;
     std::string scene, method = "mesh", record, replay, out, screenshot, video, size = "1280x720";
     long long frames = 0;
     int cache_mib = MethodSettings::kDefaultCacheMib;
@@ -160,8 +160,8 @@ void run_fly(const FlyOptions& o) {
     MethodSettings settings;
     settings.cache_bytes = tile_cache_bytes(o.cache_mib);
     DataSet data = load_terrain_lazily(o.terrain);
+    data.environment = with_looks(o.looks, data.environment);
     if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
-    apply_look_options(o.look, data.environment);
     MethodContext methods{data.terrain, settings, {}};
     if (is_tile_directory(o.terrain.terrain))
         methods.tiles = [dir = o.terrain.terrain, bound = settings.cache_bytes] {
@@ -208,8 +208,9 @@ void add_fly_command(CLI::App& app) {
     auto o = std::make_shared<FlyOptions>();
     CLI::App* sub = app.add_subcommand("fly", "Fly the hovercraft over a terrain in a window");
     add_terrain_options(*sub, o->terrain);
+    add_max_direct_size_option(*sub, o->terrain);
     sub->add_option("--scene", o->scene, "Scene TOML with objects to add");
-    add_look_options(*sub, o->look);
+    add_look_options(*sub, o->looks, " (f cycles: off, GL_EXP fog, atmosphere)");
     sub->add_option("--method", o->method,
                     "Terrain method shown first (" + terrain_method_names() + "; Tab cycles " +
                         terrain_method_names(" -> ", true) + "); with --replay, the one that renders")

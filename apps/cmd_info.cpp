@@ -20,8 +20,8 @@ void add_info_command(CLI::App& app) {
     add_terrain_options(*cmd, args->terrain);
     cmd->add_flag("--json", args->json, "print one JSON object");
     cmd->callback([args] {
-        const DataSet data = load_terrain_lazily(args->terrain);
-        const std::string report = args->json ? terrain_report_json(data) : terrain_report_text(data);
+        const TerrainDescription d = describe_terrain_lazily(args->terrain);
+        const std::string report = args->json ? terrain_report_json(d) : terrain_report_text(d);
         std::fwrite(report.data(), 1, report.size(), stdout);
     });
 }

@@ -32,18 +32,19 @@ void add_render_command(CLI::App& app) {
         TerrainArgs terrain;
         CameraArgs camera;
         MethodOptions methods;
-        LookArgs look;
+        LookArgs looks;
         std::string out, depth, method = "voxel";
         bool stats = false;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("render", "Render one view of a terrain to a PNG (and its depth to a TIFF)");
     add_terrain_options(*cmd, args->terrain);
+    add_max_direct_size_option(*cmd, args->terrain);
     cmd->add_option("-o,--output", args->out, "output PNG")->required();
     cmd->add_option("--method", args->method, "terrain renderer: " + terrain_method_names())->capture_default_str();
     add_camera_options(*cmd, args->camera);
     add_method_options(*cmd, args->methods);
-    add_look_options(*cmd, args->look);
+    add_look_options(*cmd, args->looks);
     cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
     cmd->callback([args, cmd] {
@@ -56,10 +57,10 @@ void add_render_command(CLI::App& app) {
         auto t0 = std::chrono::steady_clock::now();
         const bool tiles = is_tile_directory(args->terrain.terrain);
         DataSet data = row->reads_tiles ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
-        apply_look_options(args->look, data.environment);
         const double ms_load = ms_since(t0);
         const Camera camera = make_camera(args->camera, data, 1280, 720);
         RenderSession session(data, args->methods, tiles ? args->terrain.terrain : std::string());
+        session.set_environment(with_looks(args->looks, data.environment));
         // A user's `voxel` view shows the objects: Szenberg's composite.
         if (args->method == "voxel" && session.has_objects()) row = find_terrain_method("voxel+objects");
         std::unique_ptr<TerrainMethod> method = session.create(*row);

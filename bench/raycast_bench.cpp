@@ -2,11 +2,12 @@
 // Visualization of a Terrain with Objects", SIBGRAPI 1997, Table 1's
 // "Floating Horizon" step): the fast caster against the literal Algorithm 1
 // in the same run, on the demo island, at 1920x1080 with the far plane 2048
-// cells away. Counters:
+// cells away, with fog and with the atmosphere. Counters:
 // ns per ray sample (columns x slices up to far) and frames per second.
 //   bench_raycast_bench --benchmark_filter=. [--benchmark_min_time=1]
 // Environment OVERFLIGHT_BENCH_DEMO_SIZE (default 4097) sets the island size.
 #include "core/DemoIsland.h"
+#include "raycast/Atmosphere.h"
 #include "raycast/FloatingHorizon.h"
 #include "raycast/FloatingHorizonLiteral.h"
 
@@ -51,17 +52,20 @@ Camera bench_camera(const DataSet& ds, Projection proj) {
     return cam;
 }
 
-void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt) {
+// atmosphere: the aerial perspective (Environment::atmosphere) instead of fog.
+void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool atmosphere = false) {
     const DataSet& ds = island();
     const int threads = int(state.range(0));
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     FloatingHorizon fh(ds.terrain);
     const Camera cam = bench_camera(ds, proj);
+    Environment env = ds.environment;
+    env.atmosphere = atmosphere;
     ColorImage color;
     DepthImage depth;
     RaycastStats stats;
-    fh.render(cam, ds.environment, opt, color, depth, &stats); // warm-up
-    for (auto _ : state) fh.render(cam, ds.environment, opt, color, depth, &stats);
+    fh.render(cam, env, opt, color, depth, &stats); // warm-up
+    for (auto _ : state) fh.render(cam, env, opt, color, depth, &stats);
     state.counters["ns_per_sample"] = benchmark::Counter(double(stats.samples) * 1e-9 * double(state.iterations()),
                                                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
     state.counters["samples"] = double(stats.samples);
@@ -71,6 +75,22 @@ void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt) {
 
 void BM_Voxel(benchmark::State& s) { run_fast(s, Projection::Shear, {}); }
 // Without run skipping (SliceRunBound): what the max-height pyramid saves.
+void BM_VoxelAtmosphere(benchmark::State& s) { run_fast(s, Projection::Shear, {}, true); }
+
+// The aerial perspective's per-frame tables for an eye that climbs every
+// frame, as in a flight (the direction and sky tables are rebuilt).
+void BM_AerialTables(benchmark::State& state) {
+    Environment env;
+    env.atmosphere = true;
+    AerialTables tables;
+    double eye_y = 100.0;
+    for (auto _ : state) {
+        eye_y += 0.5;
+        tables.build(aerial_frame(env, eye_y), float(-eye_y), float(3000.0 - eye_y));
+        benchmark::DoNotOptimize(tables.haze());
+    }
+}
+
 void BM_VoxelNoSkip(benchmark::State& s) {
     RaycastOptions o;
     o.skip_runs = false;
@@ -114,6 +134,8 @@ void BM_VoxelLiteral(benchmark::State& state) {
 } // namespace
 
 BENCHMARK(BM_Voxel)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelAtmosphere)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AerialTables)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelNoSkip)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelLod)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -15,9 +15,10 @@ harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then
   for src in "$root"/fuzz/*.cpp; do harnesses+=("$(basename "$src" .cpp)"); done
 fi
+mkdir -p "$build"
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DOVERFLIGHT_FUZZ=ON \
   -DOVERFLIGHT_FUZZ_SANITIZE= -DOVERFLIGHT_TESTS=OFF -DOVERFLIGHT_BENCH=OFF \
-  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 cmake --build "$build" --target "${harnesses[@]}" >/dev/null
 status=0
 for h in "${harnesses[@]}"; do

@@ -14,6 +14,20 @@
 
 namespace overflight {
 
+// An exponential-height atmosphere (Hoffman, Preetham, "Rendering Outdoor
+// Light Scattering in Real Time", GDC 2002, with their constant density made
+// exp(-y / scale_height)): air and haze as one mixture whose extinction equals
+// its scattering, Rayleigh-like per channel plus grey haze (Mie), in units of
+// 1 / world unit at height 0. core/AerialPerspective.h evaluates it.
+struct AtmosphereParams {
+    glm::vec3 rayleigh{11.6e-6f, 27.0e-6f, 66.2e-6f}; // twice sea-level air's (Bucholtz 1995), for a thicker scale height
+    float haze = 1.2e-5f;          // Mie scattering of the haze, every channel
+    float scale_height = 4000.0f;  // density exp(-y / scale_height), y world height
+    float haze_g = 0.7f;           // Henyey-Greenstein asymmetry of the haze
+    float exposure = 2.0f;         // in-scattered sunlight to display: 1 - exp(-exposure L), then gamma 2.2
+    glm::vec3 sunlight{1.0f, 1.0f, 1.0f}; // above the atmosphere (the lighting's sun_color may be switched off)
+};
+
 struct Environment {
     glm::vec3 sun_dir{0.3f, 0.8f, 0.5f};   // towards the sun, world space (normalised on use)
     glm::vec3 sun_color{1.0f, 0.96f, 0.9f};
@@ -24,6 +38,10 @@ struct Environment {
     glm::vec3 fog_color{0.72f, 0.80f, 0.90f};
     glm::vec3 sky_zenith{0.30f, 0.50f, 0.85f};
     glm::vec3 sky_horizon{0.72f, 0.80f, 0.90f};
+    // Aerial perspective and a sky that follows the sun (AtmosphereParams)
+    // instead of the GL_EXP fog and the sky gradient above.
+    bool atmosphere = false;
+    AtmosphereParams air;
 };
 
 struct VehicleStart {
@@ -47,6 +65,9 @@ struct TerrainInfo {
     std::string nodata_method;     // how no-data was filled
     std::string color_source;      // "color.ppm", a raster path, "elevation ramp + hillshade", "procedural"
     int source_rows = 0, source_cols = 0;
+    // Each terrain sample stands for decimation x decimation source samples
+    // (a raster larger than a direct render takes, read decimated); 1: full resolution.
+    int decimation = 1;
     // Georeferencing of the terrain grid as loaded (after any reprojection),
     // GDAL convention: sample (row i, col j) is the pixel whose top-left
     // corner is (gt[0] + j gt[1] + i gt[2], gt[3] + j gt[4] + i gt[5]) in

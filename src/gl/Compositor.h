@@ -27,7 +27,9 @@
 // Fog used by every program (the ray caster matches it, raycast/Atmosphere.h):
 //     f = exp(-fog_density * d),  d = |P - eye| (eye-space distance),
 //     color = mix(fog_color, lit, f),  lit = albedo * (ambient + sun_color * max(N.sun_dir, 0) * visible),
-// visible = 0 below the terrain's shadow ceiling (with shadows on), else 1.
+// visible = 0 below the terrain's shadow ceiling (with shadows on), else 1;
+// with Environment::atmosphere, the aerial perspective and sky of
+// core/AerialPerspective.h instead of the fog (GLSL aerial(), air_sky()).
 //
 // Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of
 // a Terrain with Objects" (SIBGRAPI 1997), sec. 3, 5 and 7 (Tables 1 and 2);

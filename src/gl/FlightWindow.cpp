@@ -204,8 +204,8 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
             hud.visible = t.hud;
             hud.draw(HudInfo{fps, frame_ms, session.ms_per_physics_step(), latest_steps, counts.terrain_primitives,
                              counts.object_triangles, methods.name(current), methods.get(current).detail(),
-                             glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, t.fog, t.lighting, t.wireframe,
-                             t.shadows, session.environment().sun_dir});
+                             glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, to_string(t.fog), t.lighting,
+                             t.wireframe, t.shadows, session.environment().sun_dir});
             window.swap_buffers();
         }
         session.end_frame();
@@ -238,7 +238,7 @@ FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& 
     Camera cam = flight_camera(data.terrain, fov);
     cam.width = width;
     cam.height = height;
-    const Environment env = view_environment(data.environment, data.terrain, data.environment.fog_density > 0, true);
+    const Environment env = view_environment(data.environment, data.terrain, fog_mode_of(data.environment), true);
     const std::size_t n = frames > 0 ? std::min<std::size_t>(std::size_t(frames), record.frames.size())
                                      : record.frames.size();
     ColorImage image;

@@ -7,7 +7,7 @@
 // without it in tests.
 //
 // Keys (CMSC 23700 hovercraft project sec. 3.1, plus Tab, P and H): UP
-// accelerate, DOWN brake, LEFT/RIGHT turn, f fog, 1 lighting, W wireframe,
+// accelerate, DOWN brake, LEFT/RIGHT turn, f fog (off, GL_EXP, atmosphere), 1 lighting, W wireframe,
 // + / _ level of detail x / ÷ sqrt 2, Tab next method (same camera), P
 // screenshot, H HUD, q quit.
 //

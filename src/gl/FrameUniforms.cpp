@@ -1,6 +1,8 @@
 // Based on: Szenberg et al. 1997 sec. 5.1 (camera mapping) and DESIGN sec. 2.
 #include "gl/FrameUniforms.h"
 
+#include "core/AerialPerspective.h"
+
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -34,6 +36,14 @@ void FrameUniforms::update(const Camera& camera, const Environment& env, const T
     const double shift = camera.projection == Projection::Shear ? fp * std::tan(glm::radians(camera.pitch)) : 0.0;
     block_.image = glm::vec4(float(camera.width), float(camera.height), float(fp), float(shift));
     block_.grid = glm::vec4(terrain.h_scale(), terrain.min_height(), float(terrain.rows()), float(terrain.cols()));
+    if (env.atmosphere) {
+        const AerialFrame air = aerial_frame(env, camera.eye.y);
+        block_.air_beta = glm::vec4(glm::vec3(air.beta * air.eye_density), float(air.scale_height));
+        block_.air_rayleigh = glm::vec4(glm::vec3(air.rayleigh_light), float(air.g));
+        block_.air_haze = glm::vec4(glm::vec3(air.haze_light), 1.0f);
+    } else {
+        block_.air_beta = block_.air_rayleigh = block_.air_haze = glm::vec4(0.0f);
+    }
     glNamedBufferSubData(ubo_.get(), 0, sizeof(FrameBlock), &block_);
 }
 

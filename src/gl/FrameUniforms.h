@@ -1,7 +1,8 @@
 #pragma once
 // The per-frame state every GL program reads (uniform block `Frame`, binding
 // 0): the camera's view-projection (DESIGN sec. 2, core Camera matrices), the
-// sun, fog and sky of the data set's Environment, and the terrain grid.
+// sun, fog and sky of the data set's Environment (or its atmosphere's
+// per-frame constants, core/AerialPerspective.h), and the terrain grid.
 //
 // Based on: Szenberg et al. 1997 sec. 5.1 (the OpenGL camera of the ray
 // caster) and the hovercraft handout (CMSC 23700 project 2a: sun lighting, GL_EXP fog, sky).
@@ -19,6 +20,7 @@ struct FrameBlock {
     glm::mat4 view_proj;
     glm::vec4 eye, sun_dir, sun_color, ambient, fog, sky_zenith, sky_horizon;
     glm::vec4 view_axis, view_right, view_up, image, grid;
+    glm::vec4 air_beta, air_rayleigh, air_haze;
     glm::vec4 shadow; // ShadowCeilingTexture::uniform(), or 0: no terrain shadows
     glm::vec4 look;   // x: 1 while baked surfaces are drawn, y: 1 while the terrain is (set_terrain_pass)
 };

@@ -42,6 +42,10 @@ layout(std140, binding = 0) uniform Frame {
     vec4 view_up;      // Y (shear) or U' (tilt)
     vec4 image;        // width, height, focal length px, shear shift fp*tan(pitch)
     vec4 grid;         // h_scale, min terrain height, rows, cols
+    // The atmosphere (core/AerialPerspective.h, AerialFrame):
+    vec4 air_beta;     // rgb = beta_c rho0 (extinction at the eye's height), a = scale height H
+    vec4 air_rayleigh; // rgb = R_c, a = haze asymmetry g
+    vec4 air_haze;     // rgb = M_c, a = 1 when the atmosphere replaces the fog and sky gradient
     vec4 shadow;       // x: 1 = the terrain casts shadows; y: texels per world unit
     vec4 look;         // x: 1 = what is drawn now is baked (the terrain's colors with --lighting baked): no sun;
                        // y: 1 = what is drawn now is the terrain
@@ -51,7 +55,35 @@ layout(binding = 7) uniform sampler2D shadow_ceiling;
 
 vec4 clip_of(vec3 world) { return view_proj * vec4(world - eye.xyz, 1.0); }
 
+// The aerial perspective and sky of core/AerialPerspective.h, term for term.
+float height_factor(float x) {
+    x = max(x, -40.0);
+    return abs(x) < 1e-3 ? 1.0 - x * (0.5 - x / 6.0) : (1.0 - exp(-x)) / x;
+}
+vec3 haze_color(float c) {
+    float g = air_rayleigh.a;
+    float rayleigh = 0.75 * (1.0 + c * c);
+    float hg = (1.0 - g * g) / pow(1.0 + g * g - 2.0 * g * c, 1.5);
+    return pow(1.0 - exp(-(air_rayleigh.rgb * rayleigh + air_haze.rgb * hg)), vec3(1.0 / 2.2));
+}
+vec3 aerial(vec3 color, vec3 world) {
+    vec3 v = world - eye.xyz;
+    float d = length(v);
+    if (!(d > 0.0)) return color;
+    vec3 t = exp(-air_beta.rgb * (d * height_factor(v.y / air_beta.a)));
+    return color * t + (1.0 - t) * haze_color(dot(v, sun_dir.xyz) / d);
+}
+vec3 air_sky(vec3 dir) {
+    vec3 u = normalize(dir);
+    vec3 opacity = u.y > 0.0 ? pow(1.0 - exp(-air_beta.rgb * (air_beta.a / u.y)), vec3(1.0 / 2.2)) : vec3(1.0);
+    return opacity * haze_color(dot(u, sun_dir.xyz));
+}
+
+// GL_EXP fog with the eye distance taken as the length of the eye-space
+// position, i.e. the world distance from the eye: f = exp(-density *
+// distance); or the aerial perspective when the atmosphere is on.
 vec3 fogged(vec3 color, vec3 world) {
+    if (air_haze.a > 0.0) return aerial(color, world);
     return mix(fog.rgb, color, exp(-fog.a * length(world - eye.xyz)));
 }
 // How much of the sun `world` sees past the terrain. Each of the four
@@ -77,14 +109,12 @@ float sun_visible(vec3 world) {
 }
 // Lambert sun + ambient (hovercraft sun lighting; core/SunLight.h is the same
 // per sample: no sun at or below the horizon, none in the terrain's shadow),
-// then GL_EXP fog with the eye distance taken as the length of the eye-space
-// position, i.e. the world distance from the eye: f = exp(-density * distance).
+// then fogged().
 vec3 shade(vec3 albedo, vec3 n, vec3 world) {
     if (look.x > 0.0) return fogged(albedo, world);
     float lambert = sun_dir.y > 0.0 ? max(dot(normalize(n), sun_dir.xyz), 0.0) * sun_visible(world) : 0.0;
     vec3 lit = albedo * (ambient.rgb + sun_color.rgb * lambert);
-    float f = exp(-fog.a * length(world - eye.xyz));
-    return mix(fog.rgb, lit, f);
+    return fogged(lit, world);
 }
 )";
 

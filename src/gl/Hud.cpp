@@ -47,7 +47,7 @@ void Hud::draw(const HudInfo& info) {
         ImGui::Text("triangles %lld  objects %lld", info.triangles, info.object_triangles);
         ImGui::Text("position %.1f, %.1f, %.1f", info.position.x, info.position.y, info.position.z);
         ImGui::Text("speed %.2f m/s  heading %.1f", info.speed, info.heading);
-        ImGui::Text("fog %s  light %s  shadows %s  wire %s", info.fog ? "on" : "off", info.lighting ? "sun" : "baked",
+        ImGui::Text("fog %s  light %s  shadows %s  wire %s", info.fog, info.lighting ? "sun" : "baked",
                     info.shadows ? "on" : "off", info.wireframe ? "on" : "off");
         const SunAngles sun = sun_angles(info.sun_dir);
         ImGui::Text("sun azimuth %.0f  elevation %.0f%s", sun.azimuth, sun.elevation,

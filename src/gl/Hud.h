@@ -2,8 +2,8 @@
 // The heads-up display of the `fly` window: fps, ms per frame, per
 // rendering step (ray cast or tessellate, uploads, objects: FlightStepTimer)
 // and per physics step, triangles, method and level of detail, vehicle
-// position, speed and heading, and the fog / lighting / wireframe toggles of
-// CMSC 23700 project 2a sec. 3.1. Drawn with Dear ImGui (Debian's libimgui + its GLFW and
+// position, speed and heading, and the fog (off, GL_EXP, atmosphere) /
+// lighting / wireframe toggles of CMSC 23700 project 2a sec. 3.1. Drawn with Dear ImGui (Debian's libimgui + its GLFW and
 // OpenGL 3 backends).
 #include "gl/FlightTimer.h"
 
@@ -27,7 +27,8 @@ struct HudInfo {
     glm::dvec3 position{0.0};   // vehicle, world
     double speed = 0;           // world units per second
     double heading = 0;         // degrees
-    bool fog = false, lighting = true, wireframe = false;
+    const char* fog = "off";    // the fog mode: off, GL_EXP, atmosphere
+    bool lighting = true, wireframe = false;
     bool shadows = false;
     glm::vec3 sun_dir{0.0f, 1.0f, 0.0f}; // towards the sun
 };

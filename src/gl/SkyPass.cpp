@@ -19,6 +19,10 @@ void main() {
     float u = gl_FragCoord.x - 0.5 * image.x;
     float v = gl_FragCoord.y - 0.5 * image.y;
     vec3 dir = view_axis.xyz + (u / image.z) * view_right.xyz + ((v + image.w) / image.z) * view_up.xyz;
+    if (air_haze.a > 0.0) {
+        frag = vec4(air_sky(dir), 1.0);
+        return;
+    }
     float s = max(normalize(dir).y, 0.0);
     frag = vec4(mix(sky_horizon.rgb, sky_zenith.rgb, s), 1.0);
 }

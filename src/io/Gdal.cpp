@@ -41,6 +41,14 @@ void ensure_initialised() {
     static std::once_flag once;
     std::call_once(once, [] {
         CPLSetErrorHandler(CPLQuietErrorHandler);
+        // GDALFillNodata keeps its work rasters in temporary files named by
+        // CPLGenerateTempFilename, in the current folder unless CPL_TMPDIR is
+        // set: a run stopped there would leave them beside the user's files.
+        if (!CPLGetConfigOption("CPL_TMPDIR", nullptr)) {
+            std::error_code ec;
+            const std::filesystem::path tmp = std::filesystem::temp_directory_path(ec);
+            if (!ec) CPLSetConfigOption("CPL_TMPDIR", tmp.c_str());
+        }
         GDALAllRegister();
     });
 }
@@ -87,8 +95,13 @@ Dataset create_mem(const std::string& subject, int cols, int rows, int bands, GD
     return ds;
 }
 
-Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
-    StringList args(with_mem_output(options));
+namespace {
+
+Dataset translate_to(const std::string& format, GDALDatasetH src, const std::vector<std::string>& options,
+                     const std::string& subject) {
+    std::vector<std::string> all{"-of", format};
+    all.insert(all.end(), options.begin(), options.end());
+    StringList args(all);
     GDALTranslateOptions* opts = GDALTranslateOptionsNew(args.list, nullptr);
     if (!opts) throw Error(subject, "bad translate options: " + last_error("?"));
     CPLErrorReset();
@@ -97,6 +110,16 @@ Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, con
     GDALTranslateOptionsFree(opts);
     if (!out || usage_error) throw Error(subject, "cannot convert raster: " + last_error("GDALTranslate failed"));
     return out;
+}
+
+} // namespace
+
+Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
+    return translate_to("MEM", src, options, subject);
+}
+
+Dataset translate_lazily(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {
+    return translate_to("VRT", src, options, subject);
 }
 
 Dataset warp(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject) {

@@ -34,6 +34,9 @@ Dataset create_mem(const std::string& subject, int cols, int rows, int bands, GD
 // GDALTranslate / GDALWarp to an in-memory dataset with gdal_translate /
 // gdalwarp command-line options (the "-of MEM" is added here). Error(subject, ...) on failure.
 Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject);
+// As translate, to a virtual dataset (VRT) that reads `src` (which must outlive
+// it) only when its pixels are read: a raster larger than memory passes through.
+Dataset translate_lazily(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject);
 Dataset warp(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject);
 
 } // namespace overflight::gdal

@@ -8,6 +8,7 @@
 #include "core/Shading.h"
 #include "core/Terrain.h"
 #include "io/Gdal.h"
+#include "io/GdalReducedReads.h"
 #include "io/HeightMapping.h"
 #include "io/UsgsDemHeader.h"
 
@@ -134,6 +135,9 @@ constexpr int kMaxSide = 65537;
 // no-data filling or warping, 16-bit heights, RGB colors, with slack for
 // GDAL's own buffers.
 constexpr double kLoadBytesPerSample = 16;
+// Samples a survey reads for the elevation range and no-data share: 64 blocks
+// of a tiled GeoTIFF, a few hundred rows of a striped one.
+constexpr long long kSurveySamples = 1LL << 22;
 
 // Record A of a USGS DEM is its first 1024-byte record (Zamri, sec. 3).
 std::string usgs_record_a_text(const std::string& path) {
@@ -183,6 +187,22 @@ Grid grid_of(GDALDatasetH ds, const std::string& subject) {
     const char* wkt = GDALGetProjectionRef(ds);
     g.wkt = wkt ? wkt : "";
     read_band(GDALGetRasterBand(ds, 1), g.cols, g.rows, g.z, subject);
+    return g;
+}
+
+// Band 1 decimated by `factor`: each sample the mean of a factor x factor
+// block of source samples (the last cols % factor columns and rows % factor
+// rows are left out), the geotransform's pixel size multiplied by `factor`,
+// so each sample keeps the footprint of its block.
+Grid decimated_grid_of(GDALDatasetH ds, const std::string& path, int factor) {
+    Grid g;
+    g.cols = GDALGetRasterXSize(ds) / factor;
+    g.rows = GDALGetRasterYSize(ds) / factor;
+    g.georeferenced = GDALGetGeoTransform(ds, g.gt) == CE_None;
+    for (const int k : {1, 2, 4, 5}) g.gt[k] *= factor;
+    const char* wkt = GDALGetProjectionRef(ds);
+    g.wkt = wkt ? wkt : "";
+    gdal::read_block_averages(path, factor, g.cols, g.rows, g.z, path);
     return g;
 }
 
@@ -260,7 +280,9 @@ ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
     if (!warp) {
         opts.insert(opts.end(), {"-outsize", std::to_string(dem.cols), std::to_string(dem.rows), "-r", "bilinear"});
     }
-    gdal::Dataset picked = gdal::translate(src.get(), opts, color_path);
+    // Picked lazily: only the warp or the read onto the DEM grid below reads
+    // the color raster, block by block, so one larger than memory fits.
+    gdal::Dataset picked = gdal::translate_lazily(src.get(), opts, color_path);
     std::string how = "stretched to the DEM grid (bilinear; no common georeferencing)";
     if (warp) {
         // The DEM's samples are its pixel centres, so the color grid is the DEM's pixel grid.
@@ -274,7 +296,7 @@ ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
         picked = gdal::warp(picked.get(),
                             {"-t_srs", dem.wkt, "-te", fmt(xmin, 17), fmt(std::min(ymin, ymax), 17), fmt(xmax, 17),
                              fmt(std::max(ymin, ymax), 17), "-ts", std::to_string(dem.cols), std::to_string(dem.rows),
-                             "-r", method},
+                             "-r", method, "-ovr", "NONE"},
                             color_path);
         how = std::string("warped onto the DEM grid (") + method + ")";
     }
@@ -342,8 +364,13 @@ void check_declared_size(GDALDatasetH ds, const std::string& path, const std::st
     if (rows > kMaxSide || cols > kMaxSide)
         throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", more than " +
                               std::to_string(kMaxSide) + " samples per side");
-    // Loading holds the elevations as floats, a float copy for GDAL's no-data
-    // filling or warping, and the terrain's 16-bit heights and RGB colors.
+}
+
+// Loading holds the elevations as floats, a float copy for GDAL's no-data
+// filling or warping, and the terrain's 16-bit heights and RGB colors: a
+// cols x rows read is refused before allocating when that exceeds the
+// machine's memory.
+void check_memory(const std::string& path, int cols, int rows) {
     const double needed = double(rows) * double(cols) * kLoadBytesPerSample;
     const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
     if (memory > 0 && needed > memory)
@@ -366,74 +393,194 @@ void warn_about_bands(GDALDatasetH ds, TerrainInfo& info) {
             (ci == GCI_RedBand ? " (an RGB image? give heights as TERRAIN and the image as --color)" : ""));
 }
 
-// Converts band 1's values in `grid` to metres (band scale/offset, then the
-// unit type) and marks no-data as kNoData. Returns the number of no-data
-// samples; `integral` tells whether every valid value is whole metres.
+// Band 1's values as metres: its no-data value (and NaN) mark voids, then its
+// scale/offset and unit type apply. Records the unit in `info`.
+struct HeightConversion {
+    int has_nodata = 0;
+    double nodata = 0, scale = 1, offset = 0, unit_to_metre = 1;
+
+    HeightConversion(GDALDatasetH src_ds, TerrainInfo& info) {
+        GDALRasterBandH band = GDALGetRasterBand(src_ds, 1);
+        nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+        int has_scale = 0, has_offset = 0;
+        scale = GDALGetRasterScale(band, &has_scale);
+        offset = GDALGetRasterOffset(band, &has_offset);
+        if (!has_scale || scale == 0) scale = 1;
+        if (!has_offset) offset = 0;
+        const char* unit = GDALGetRasterUnitType(band);
+        info.unit_to_metre = unit_to_metre = metres_per_unit(unit ? unit : "", info.vertical_units);
+    }
+    bool missing(float v) const {
+        return !std::isfinite(v) || (has_nodata && (double(v) == nodata || float(nodata) == v));
+    }
+    // Rejects, naming the file and the sample, a value that would otherwise
+    // become an infinite elevation range that later steps blame on something else.
+    double metres(float v, long long row, long long col, const std::string& path) const {
+        const double m = (double(v) * scale + offset) * unit_to_metre;
+        if (const std::string problem = elevation_problem(m); !problem.empty())
+            throw Error(path, "row " + std::to_string(row) + ", column " + std::to_string(col) + ": " + problem +
+                                  " (not a terrain height; is the no-data value set?)");
+        return m;
+    }
+};
+
+// Converts band 1's values in `grid` to metres and marks no-data as kNoData.
+// Returns the number of no-data samples; `integral` tells whether every valid
+// value is whole metres.
 long long heights_to_metres(Grid& grid, GDALDatasetH src_ds, const std::string& path, TerrainInfo& info,
                             bool& integral) {
-    GDALRasterBandH band = GDALGetRasterBand(src_ds, 1);
-    int has_nodata = 0;
-    const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
-    int has_scale = 0, has_offset = 0;
-    double scale = GDALGetRasterScale(band, &has_scale), offset = GDALGetRasterOffset(band, &has_offset);
-    if (!has_scale || scale == 0) scale = 1;
-    if (!has_offset) offset = 0;
-    const char* unit = GDALGetRasterUnitType(band);
-    info.unit_to_metre = metres_per_unit(unit ? unit : "", info.vertical_units);
+    const HeightConversion conversion(src_ds, info);
     long long voids = 0;
     integral = true; // whole metres in the source: kept exact (v_scale = 1) when not resampled
     for (std::size_t i = 0; i < grid.z.size(); ++i) {
         float& v = grid.z[i];
-        const bool missing = !std::isfinite(v) || (has_nodata && (double(v) == nodata || float(nodata) == v));
-        if (missing) {
+        if (conversion.missing(v)) {
             v = kNoData;
             ++voids;
             continue;
         }
-        // Rejected here, naming the file: such a value would otherwise become
-        // an infinite elevation range that later steps blame on something else.
-        const double metres = (double(v) * scale + offset) * info.unit_to_metre;
-        if (const std::string problem = elevation_problem(metres); !problem.empty())
-            throw Error(path, "row " + std::to_string(i / std::size_t(grid.cols)) + ", column " +
-                                  std::to_string(i % std::size_t(grid.cols)) + ": " + problem +
-                                  " (not a terrain height; is the no-data value set?)");
-        v = float(metres);
+        v = float(conversion.metres(v, i / std::size_t(grid.cols), i % std::size_t(grid.cols), path));
         integral = integral && v == std::round(v);
     }
     return voids;
 }
 
-// Warps `grid` to square metric cells when its CRS is geographic or its cells
-// are rotated or not square (DESIGN sec. 4); returns the cell size in metres.
-double to_square_metric_cells(Grid& grid, GDALDatasetH src_ds, const std::string& path, TerrainInfo& info) {
-    const bool real_gt = grid.georeferenced &&
-                         !(grid.gt[0] == 0 && grid.gt[1] == 1 && grid.gt[2] == 0 && grid.gt[3] == 0 &&
-                           grid.gt[4] == 0 && grid.gt[5] == 1);
-    grid.georeferenced = real_gt;
-    OGRSpatialReferenceH srs = GDALGetSpatialRef(src_ds);
-    if (!real_gt) srs = nullptr; // a CRS without a geotransform places nothing
-    info.source_crs = srs_name(srs);
-    info.crs = info.source_crs;
-    double hs = 1.0;
-    std::vector<std::string> warp_opts;
+// The square metric grid a raster is loaded onto (DESIGN sec. 4), worked out
+// from its georeferencing alone, before any sample is read: its own grid, or
+// the grid gdalwarp suggests (GDALSuggestedWarpOutput2) in the UTM zone of its
+// centre for a geographic CRS, or in its own CRS at its finer pixel size for
+// rotated or non-square cells.
+struct MetricGrid {
+    bool georeferenced = false;        // a real geotransform, not GDAL's default
+    std::string source_crs, crs;       // srs_name of the source's CRS and of the grid's
+    bool warped = false;               // the grid is not the raster's own
+    std::vector<std::string> target;   // gdalwarp's "-t_srs WKT" to a UTM zone, or nothing
+    bool finer_cells = false;          // warped within its CRS to square cells of `res`
+    int cols = 0, rows = 0;            // of the grid at full resolution
+    double gt[6] = {0, 1, 0, 0, 0, 1}; // of the grid at full resolution
+    double res = 1.0;                  // its cell size in CRS units
+    double metres_per_unit = 1.0;      // linear unit of its CRS (a projected CRS in feet)
+    std::string wkt;                   // its CRS, empty if none
+    double inside_share = 1.0;         // share of the grid's cells whose centre falls on the source
+};
+
+// The share of `m`'s cells whose centre `transformer` (source pixels to the
+// grid's CRS) maps back inside the source raster, from a 64x64 lattice: the
+// rest is filled as no-data after a reprojection.
+double share_inside_source(void* transformer, const MetricGrid& m, int src_cols, int src_rows) {
+    constexpr int kLattice = 64;
+    std::vector<double> x, y, z(kLattice * kLattice, 0.0);
+    for (int i = 0; i < kLattice; ++i)
+        for (int j = 0; j < kLattice; ++j) {
+            const double col = (j + 0.5) * m.cols / kLattice, row = (i + 0.5) * m.rows / kLattice;
+            x.push_back(m.gt[0] + col * m.gt[1] + row * m.gt[2]);
+            y.push_back(m.gt[3] + col * m.gt[4] + row * m.gt[5]);
+        }
+    std::vector<int> ok(x.size(), 0);
+    GDALGenImgProjTransform(transformer, TRUE, int(x.size()), x.data(), y.data(), z.data(), ok.data());
+    long long inside = 0;
+    for (std::size_t k = 0; k < x.size(); ++k)
+        inside += ok[k] && x[k] >= 0 && y[k] >= 0 && x[k] < src_cols && y[k] < src_rows;
+    return double(inside) / double(x.size());
+}
+
+MetricGrid metric_grid_of(GDALDatasetH ds, const std::string& path) {
+    MetricGrid m;
+    m.cols = GDALGetRasterXSize(ds);
+    m.rows = GDALGetRasterYSize(ds);
+    const bool has_gt = GDALGetGeoTransform(ds, m.gt) == CE_None;
+    m.georeferenced = has_gt && !(m.gt[0] == 0 && m.gt[1] == 1 && m.gt[2] == 0 && m.gt[3] == 0 && m.gt[4] == 0 &&
+                                  m.gt[5] == 1);
+    OGRSpatialReferenceH srs = m.georeferenced ? GDALGetSpatialRef(ds) : nullptr; // a CRS without a geotransform places nothing
+    m.source_crs = srs_name(srs);
+    m.crs = m.source_crs;
+    m.wkt = srs ? to_wkt(srs) : "";
+    const double px = std::hypot(m.gt[1], m.gt[4]), py = std::hypot(m.gt[2], m.gt[5]);
+    m.res = m.georeferenced ? px : 1.0;
+    Srs utm;
     if (srs && OSRIsGeographic(srs)) {
-        const double lon = grid.gt[0] + grid.gt[1] * grid.cols * 0.5 + grid.gt[2] * grid.rows * 0.5;
-        const double lat = grid.gt[3] + grid.gt[4] * grid.cols * 0.5 + grid.gt[5] * grid.rows * 0.5;
-        Srs utm = utm_for(srs, lon, lat);
+        const double lon = m.gt[0] + m.gt[1] * m.cols * 0.5 + m.gt[2] * m.rows * 0.5;
+        const double lat = m.gt[3] + m.gt[4] * m.cols * 0.5 + m.gt[5] * m.rows * 0.5;
+        utm = utm_for(srs, lon, lat);
+        m.wkt = to_wkt(utm.get());
+        m.crs = srs_name(utm.get());
         // No -tr: gdalwarp's suggested output keeps the source's sample count
         // along the diagonal with square cells, i.e. its native resolution.
-        warp_opts = {"-t_srs", to_wkt(utm.get())};
-        info.crs = srs_name(utm.get());
-    } else if (real_gt) {
-        const double px = std::hypot(grid.gt[1], grid.gt[4]), py = std::hypot(grid.gt[2], grid.gt[5]);
-        const bool rotated = grid.gt[2] != 0 || grid.gt[4] != 0;
+        m.target = {"-t_srs", m.wkt};
+        m.warped = true;
+    } else if (m.georeferenced) {
+        const bool rotated = m.gt[2] != 0 || m.gt[4] != 0;
         if (rotated || std::abs(px - py) > 1e-6 * std::max(px, py)) {
-            const double res = std::min(px, py); // the finer spacing: no detail is lost
-            warp_opts = {"-tr", fmt(res, 17), fmt(res, 17)};
+            m.res = std::min(px, py); // the finer spacing: no detail is lost
+            m.finer_cells = m.warped = true;
         }
-        hs = px;
     }
-    if (!warp_opts.empty()) {
+    if (m.warped) {
+        // The output grid gdalwarp would make, from the transformer alone.
+        char** to = m.target.empty() ? nullptr : CSLSetNameValue(nullptr, "DST_SRS", m.wkt.c_str());
+        CPLErrorReset();
+        void* transformer = GDALCreateGenImgProjTransformer2(ds, nullptr, to);
+        CSLDestroy(to);
+        if (!transformer)
+            throw Error(path, "cannot reproject raster: " + gdal::last_error("no transformation to a metric CRS"));
+        double gt[6];
+        double extent[4];
+        int nx = 0, ny = 0;
+        const CPLErr e = GDALSuggestedWarpOutput2(ds, GDALGenImgProjTransform, transformer, gt, &nx, &ny, extent, 0);
+        if (e != CE_None) {
+            GDALDestroyGenImgProjTransformer(transformer);
+            throw Error(path, "cannot reproject raster: " + gdal::last_error("no suggested output"));
+        }
+        std::copy(gt, gt + 6, m.gt);
+        m.cols = nx;
+        m.rows = ny;
+        if (m.finer_cells) {
+            // gdalwarp -tr: the suggested extent in whole cells of `res`.
+            m.cols = int((nx * gt[1] + m.res / 2) / m.res);
+            m.rows = int((std::abs(ny * gt[5]) + m.res / 2) / m.res);
+            const double grid[6] = {gt[0], m.res, 0, gt[3], 0, -m.res};
+            std::copy(grid, grid + 6, m.gt);
+        } else {
+            m.res = std::abs(gt[1]);
+        }
+        m.inside_share = share_inside_source(transformer, m, GDALGetRasterXSize(ds), GDALGetRasterYSize(ds));
+        GDALDestroyGenImgProjTransformer(transformer);
+    }
+    if (!m.wkt.empty()) {
+        Srs parsed(OSRNewSpatialReference(m.wkt.c_str()));
+        if (parsed && OSRIsProjected(parsed.get())) m.metres_per_unit = OSRGetLinearUnits(parsed.get(), nullptr);
+    }
+    return m;
+}
+
+// The whole factor by which a raster is decimated so that its metric grid
+// has at most `max_side` samples on a side (1: read at full resolution).
+int decimation_factor(const MetricGrid& m, int max_side) {
+    const int side = std::max(m.cols, m.rows);
+    if (max_side <= 0 || side <= max_side) return 1;
+    return (side + max_side - 1) / max_side;
+}
+
+// Warps `grid` (band 1 read decimated by `factor`) to the square metric cells
+// of `m` when they are not the raster's own (DESIGN sec. 4); returns the cell
+// size in metres. Decimated, the cells are `factor` times coarser over the
+// full-resolution grid's extent.
+double to_square_metric_cells(Grid& grid, const MetricGrid& m, int factor, const std::string& path,
+                              TerrainInfo& info) {
+    grid.georeferenced = m.georeferenced;
+    info.source_crs = m.source_crs;
+    info.crs = m.crs;
+    double hs = m.georeferenced ? std::hypot(grid.gt[1], grid.gt[4]) : 1.0;
+    if (m.warped) {
+        std::vector<std::string> warp_opts = m.target;
+        if (factor > 1) {
+            const double res = m.res * factor;
+            const double xmax = m.gt[0] + m.gt[1] * m.cols, ymin = m.gt[3] + m.gt[5] * m.rows;
+            warp_opts.insert(warp_opts.end(), {"-tr", fmt(res, 17), fmt(res, 17), "-te", fmt(m.gt[0], 17),
+                                               fmt(ymin, 17), fmt(xmax, 17), fmt(m.gt[3], 17)});
+        } else if (m.finer_cells) {
+            warp_opts.insert(warp_opts.end(), {"-tr", fmt(m.res, 17), fmt(m.res, 17)});
+        }
         warp_opts.insert(warp_opts.end(), {"-r", "bilinear", "-srcnodata", fmt(kNoData, 9), "-dstnodata",
                                            fmt(kNoData, 9), "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA"});
         gdal::Dataset source = grid_dataset(grid, path);
@@ -444,19 +591,13 @@ double to_square_metric_cells(Grid& grid, GDALDatasetH src_ds, const std::string
         info.reprojected = true;
         info.reprojection = (info.source_crs.empty() ? std::string("no CRS") : info.source_crs) + " -> " + info.crs +
                             ", bilinear, square cells of " + fmt(hs, 6) + " (was " + std::to_string(info.source_cols) +
-                            "x" + std::to_string(info.source_rows) + " cells)";
+                            "x" + std::to_string(info.source_rows) + " cells" +
+                            (factor > 1 ? ", averaged " + std::to_string(factor) + "x" + std::to_string(factor) +
+                                              " first"
+                                        : "") +
+                            ")";
     }
-    if (srs) {
-        // Projected CRSs in feet: world units are metres (DESIGN sec. 4).
-        OGRSpatialReferenceH target = srs;
-        Srs parsed;
-        if (info.reprojected) {
-            parsed.reset(OSRNewSpatialReference(grid.wkt.c_str()));
-            target = parsed.get();
-        }
-        if (target && OSRIsProjected(target)) hs *= OSRGetLinearUnits(target, nullptr);
-    }
-    return hs;
+    return hs * m.metres_per_unit;
 }
 
 // Fills the no-data samples from their valid neighbours (the rest: the lowest
@@ -489,25 +630,36 @@ void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long lon
 }
 
 DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::string& driver_name,
-                     const std::string& color_path) {
+                     const std::string& color_path, int max_direct_size) {
     DataSet data;
     TerrainInfo& info = data.info;
     info.source = path;
     info.kind = "gdal";
     info.driver = driver_name;
     warn_about_bands(src_ds, info);
-    Grid grid = grid_of(src_ds, path);
-    info.source_rows = grid.rows;
-    info.source_cols = grid.cols;
+    info.source_rows = GDALGetRasterYSize(src_ds);
+    info.source_cols = GDALGetRasterXSize(src_ds);
+    const MetricGrid metric = metric_grid_of(src_ds, path);
+    const int factor = decimation_factor(metric, max_direct_size);
+    check_memory(path, info.source_cols / factor, info.source_rows / factor);
+    Grid grid = factor == 1 ? grid_of(src_ds, path) : decimated_grid_of(src_ds, path, factor);
 
     bool integral = true;
     const long long voids = heights_to_metres(grid, src_ds, path, info, integral);
     if (voids == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
     info.metadata = metadata_of(src_ds, path, info.driver);
 
-    const double hs = to_square_metric_cells(grid, src_ds, path, info);
+    const double hs = to_square_metric_cells(grid, metric, factor, path, info);
     if (const std::string problem = horizontal_scale_problem(grid.rows, grid.cols, hs); !problem.empty())
         throw Error(path, "pixel size: " + problem);
+    if (factor > 1) {
+        info.decimation = factor;
+        info.warnings.push_back(std::to_string(metric.cols) + "x" + std::to_string(metric.rows) +
+                                " samples is more than --max-direct-size " + std::to_string(max_direct_size) +
+                                "; rendering it decimated by " + std::to_string(factor) + " to " +
+                                std::to_string(grid.cols) + "x" + std::to_string(grid.rows) +
+                                " (overflight tile keeps the full resolution)");
+    }
 
     fill_voids(grid, path, info, voids, integral);
 
@@ -538,19 +690,114 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
 
 } // namespace
 
-DataSet load_gdal_raster(const std::string& path, const std::string& color_path) {
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path, int max_direct_size) {
     gdal::Dataset src = gdal::open_raster(path);
     GDALDriverH driver = GDALGetDatasetDriver(src.get());
     const std::string driver_name = driver ? GDALGetDriverShortName(driver) : "?";
     check_declared_size(src.get(), path, driver_name);
     try {
-        return load_checked(src.get(), path, driver_name, color_path);
+        return load_checked(src.get(), path, driver_name, color_path, max_direct_size);
     } catch (const std::bad_alloc&) {
         // Sizes were checked against the machine's memory, not against a
         // process limit (ulimit -v) or what other programs hold.
         throw Error(path, "not enough memory to load a " + std::to_string(GDALGetRasterXSize(src.get())) + "x" +
                               std::to_string(GDALGetRasterYSize(src.get())) + " raster");
     }
+}
+
+TerrainDescription survey_gdal_raster(const std::string& path, const std::string& color_path) {
+    gdal::Dataset src = gdal::open_raster(path);
+    GDALDriverH driver = GDALGetDatasetDriver(src.get());
+    TerrainDescription d;
+    TerrainInfo& info = d.info;
+    info.source = path;
+    info.kind = "gdal";
+    info.driver = driver ? GDALGetDriverShortName(driver) : "?";
+    check_declared_size(src.get(), path, info.driver);
+    warn_about_bands(src.get(), info);
+    info.source_rows = GDALGetRasterYSize(src.get());
+    info.source_cols = GDALGetRasterXSize(src.get());
+    const MetricGrid m = metric_grid_of(src.get(), path);
+    const double hs = m.res * m.metres_per_unit;
+    if (const std::string problem = horizontal_scale_problem(m.rows, m.cols, hs); !problem.empty())
+        throw Error(path, "pixel size: " + problem);
+
+    // Elevation range and no-data share from a sample spread over the raster
+    // (as GDAL's approximate statistics), in metres as the loader converts them.
+    const HeightConversion conversion(src.get(), info);
+    long long sampled = 0, voids = 0;
+    double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+    bool integral = true;
+    const std::string how = gdal::sample_band(
+        GDALGetRasterBand(src.get(), 1), kSurveySamples,
+        [&](int col, int row, float v) {
+            ++sampled;
+            if (conversion.missing(v)) {
+                ++voids;
+                return;
+            }
+            const double metres = conversion.metres(v, row, col, path);
+            lo = std::min(lo, metres);
+            hi = std::max(hi, metres);
+            integral = integral && metres == std::round(metres);
+        },
+        path);
+    const bool whole = how == "every sample";
+    if (voids == sampled && whole) throw Error(path, "raster is entirely no-data");
+    info.metadata = metadata_of(src.get(), path, info.driver);
+
+    info.source_crs = m.source_crs;
+    info.crs = m.crs;
+    info.reprojected = m.warped;
+    if (m.warped)
+        info.reprojection = (info.source_crs.empty() ? std::string("no CRS") : info.source_crs) + " -> " + info.crs +
+                            ", bilinear, square cells of " + fmt(hs, 6) + " (was " + std::to_string(info.source_cols) +
+                            "x" + std::to_string(info.source_rows) + " cells)";
+    info.georeferenced = m.georeferenced;
+    if (m.georeferenced) {
+        std::copy(m.gt, m.gt + 6, info.geotransform.begin());
+        info.crs_wkt = m.wkt;
+    }
+    d.rows = m.rows;
+    d.cols = m.cols;
+    d.h_scale = float(hs);
+    d.extent_x = d.h_scale * float(m.cols - 1); // as Terrain::width and depth compute them
+    d.extent_z = d.h_scale * float(m.rows - 1);
+    const double source_share = sampled > 0 ? double(voids) / double(sampled) : 0.0;
+    d.nodata_share = 1.0 - m.inside_share * (1.0 - source_share);
+    info.nodata_filled = std::llround(d.nodata_share * double(m.rows) * double(m.cols));
+    if (info.nodata_filled > 0) {
+        info.nodata_method = "inverse-distance interpolation from valid neighbours (GDALFillNodata) when loaded; " +
+                             fmt(100.0 * source_share, 3) + "% of the source sample is no-data";
+        if (m.warped)
+            info.nodata_method +=
+                ", " + fmt(100.0 * (1.0 - m.inside_share), 3) + "% of the grid is outside the source after reprojection";
+    }
+    d.elevation_known = voids < sampled;
+    if (d.elevation_known) {
+        const HeightMapping mapping = choose_height_mapping(lo, hi, integral && !m.warped);
+        d.v_scale = mapping.v_scale;
+        d.y_offset = mapping.y_offset;
+        d.elevation_min = float(lo);
+        d.elevation_max = float(hi);
+    } else {
+        info.warnings.push_back("no valid elevation among the " + std::to_string(sampled) + " samples read");
+    }
+    if (!color_path.empty()) {
+        gdal::open_raster(color_path); // a missing or unreadable color raster is reported now, not at render
+        info.color_source = color_path + " (resampled onto the DEM grid when loaded; not read by info)";
+    } else {
+        info.color_source = "elevation ramp + hillshade";
+    }
+    const std::string figures = "elevation range, height mapping and no-data share from ";
+    if (whole)
+        d.approximation = figures + "all " + std::to_string(sampled) +
+                          " source samples, before the no-data filling and reprojection of a load";
+    else
+        d.approximation = figures + std::to_string(sampled) + " of " +
+                          std::to_string((long long)info.source_cols * info.source_rows) + " source samples (" + how +
+                          "); the raster is not read whole";
+    return d;
 }
 
 } // namespace overflight

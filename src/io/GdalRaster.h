@@ -5,6 +5,7 @@
 // Based on: Zamri, sec. 3 (USGS DEM ingestion: Record A header,
 // elevation profiles); DESIGN sec. 4 (reprojection, no-data, 16-bit mapping).
 #include "core/DataSet.h"
+#include "io/TerrainReport.h"
 
 #include <string>
 
@@ -27,6 +28,13 @@ namespace overflight {
 //    (Landsat-like) image, else bands 1,2,3, a single band as grey; non-Byte
 //    bands are rescaled from their min..max to 0..255. Without it,
 //    shade_by_elevation with the sea at 0 m.
+// With max_direct_size > 0, a raster whose grid (after any reprojection)
+// has more than max_direct_size samples on a side is read decimated by the
+// smallest whole factor f that brings it within: each sample the mean of an
+// f x f block of source samples (GDAL reads through the raster's overviews
+// when it has fine enough ones), then reprojected and filled as above onto
+// cells f times coarser; the full raster is never held in memory.
+// info.decimation = f and a warning say so.
 // info records all of this; a raster of several bands, or with a palette, gets
 // a warning (only band 1 is read as heights). Throws Error(path or color_path,
 // problem) for a missing, unreadable (permission denied) or garbage file, a
@@ -35,6 +43,16 @@ namespace overflight {
 // needs more memory than the machine has (all checked before reading any
 // sample) or than the process may use, an elevation or extent beyond
 // kWorldLimit (core/Terrain.h), or one that is entirely no-data.
-DataSet load_gdal_raster(const std::string& path, const std::string& color_path = "");
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path = "", int max_direct_size = 0);
+
+// What `overflight info` reports of the raster load_gdal_raster would load at
+// full resolution, in about a second whatever its size: size, grid after
+// reprojection (GDAL's suggested warp output, nothing warped), CRS, extent,
+// units and metadata exactly; elevation range, height mapping and no-data
+// share from a sample of a few million samples spread over the raster
+// (gdal::sample_band), hence `approximation` set. A --color raster is opened,
+// not read. Throws the errors of load_gdal_raster that need no full read, and
+// "raster is entirely no-data" when every sample was read and none is valid.
+TerrainDescription survey_gdal_raster(const std::string& path, const std::string& color_path = "");
 
 } // namespace overflight

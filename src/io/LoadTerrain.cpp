@@ -43,13 +43,22 @@ DataSet load_terrain(const std::string& arg, const LoadOptions& options) {
         // Some GDAL formats are directories (ESRI binary grids); anything else
         // is reported as what the user most likely meant: a data set without map.
         try {
-            return load_gdal_raster(arg, options.color_path);
+            return load_gdal_raster(arg, options.color_path, options.max_direct_size);
         } catch (const Error& e) {
             if (e.subject() != arg) throw;
             throw Error(arg, "directory without a `map` file (not a hovercraft data set)");
         }
     }
-    return load_gdal_raster(arg, options.color_path);
+    return load_gdal_raster(arg, options.color_path, options.max_direct_size);
+}
+
+TerrainDescription describe_terrain(const std::string& arg, const LoadOptions& options, long long exact_samples) {
+    std::error_code ec;
+    if (arg != "demo" && fs::is_regular_file(arg, ec)) {
+        TerrainDescription survey = survey_gdal_raster(arg, options.color_path);
+        if ((long long)survey.rows * survey.cols > exact_samples) return survey;
+    }
+    return describe(load_terrain(arg, options));
 }
 
 } // namespace overflight

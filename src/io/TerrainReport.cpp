@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cstdlib>
+#include <set>
 #include <sstream>
 
 namespace overflight {
@@ -20,38 +21,47 @@ double tidy(float f) {
     return std::strtod(buf, nullptr);
 }
 
-nlohmann::ordered_json report(const DataSet& data) {
-    const Terrain& t = data.terrain;
-    const TerrainInfo& info = data.info;
+// The figures a survey estimates from a sample rather than reads.
+const std::set<std::string>& approximate_keys() {
+    static const std::set<std::string> keys{"v_scale",       "y_offset",     "elevation_min",
+                                            "elevation_max", "nodata_filled", "nodata_share"};
+    return keys;
+}
+
+nlohmann::ordered_json report(const TerrainDescription& d) {
+    const TerrainInfo& info = d.info;
     nlohmann::ordered_json j;
     j["source"] = info.source;
     j["kind"] = info.kind;
     j["driver"] = info.driver;
-    j["rows"] = t.rows();
-    j["cols"] = t.cols();
+    j["rows"] = d.rows;
+    j["cols"] = d.cols;
     j["source_rows"] = info.source_rows;
     j["source_cols"] = info.source_cols;
-    j["h_scale"] = tidy(t.h_scale());
-    j["v_scale"] = tidy(t.v_scale());
-    j["y_offset"] = tidy(t.y_offset());
+    j["h_scale"] = tidy(d.h_scale);
+    j["v_scale"] = tidy(d.v_scale);
+    j["y_offset"] = tidy(d.y_offset);
     j["vertical_units"] = info.vertical_units;
-    j["elevation_min"] = tidy(t.min_height());
-    j["elevation_max"] = tidy(t.max_height());
+    j["elevation_min"] = d.elevation_known ? nlohmann::ordered_json(tidy(d.elevation_min)) : nullptr;
+    j["elevation_max"] = d.elevation_known ? nlohmann::ordered_json(tidy(d.elevation_max)) : nullptr;
     j["nodata_filled"] = info.nodata_filled;
+    j["nodata_share"] = tidy(float(d.nodata_share));
     j["nodata_method"] = info.nodata_method;
     j["crs"] = info.crs;
     j["source_crs"] = info.source_crs;
     j["reprojected"] = info.reprojected;
     j["reprojection"] = info.reprojection;
-    j["extent_x"] = tidy(t.width());
-    j["extent_z"] = tidy(t.depth());
+    j["extent_x"] = tidy(d.extent_x);
+    j["extent_z"] = tidy(d.extent_z);
     j["color_source"] = info.color_source;
-    j["objects"] = data.scene.objects.size();
-    j["lines"] = data.scene.lines.size();
-    if (data.start.given)
-        j["vehicle"] = {{"x", data.start.x}, {"z", data.start.z}, {"heading", data.start.heading}};
+    j["objects"] = d.objects;
+    j["lines"] = d.lines;
+    if (d.start.given)
+        j["vehicle"] = {{"x", d.start.x}, {"z", d.start.z}, {"heading", d.start.heading}};
     else
         j["vehicle"] = nullptr;
+    j["approximate"] = !d.approximation.empty();
+    j["approximation"] = d.approximation;
     j["warnings"] = info.warnings;
     nlohmann::ordered_json md = nlohmann::ordered_json::object();
     for (const auto& [key, value] : info.metadata) md[key] = value;
@@ -67,26 +77,50 @@ std::string plain(const nlohmann::ordered_json& v) {
 
 } // namespace
 
-std::string terrain_report_text(const DataSet& data) {
-    const nlohmann::ordered_json j = report(data);
+TerrainDescription describe(const DataSet& data) {
+    const Terrain& t = data.terrain;
+    TerrainDescription d;
+    d.info = data.info;
+    d.rows = t.rows();
+    d.cols = t.cols();
+    d.h_scale = t.h_scale();
+    d.v_scale = t.v_scale();
+    d.y_offset = t.y_offset();
+    d.elevation_min = t.min_height();
+    d.elevation_max = t.max_height();
+    d.extent_x = t.width();
+    d.extent_z = t.depth();
+    const double samples = double(t.rows()) * double(t.cols());
+    d.nodata_share = samples > 0 ? double(data.info.nodata_filled) / samples : 0.0;
+    d.objects = data.scene.objects.size();
+    d.lines = data.scene.lines.size();
+    d.start = data.start;
+    return d;
+}
+
+std::string terrain_report_text(const TerrainDescription& d) {
+    const nlohmann::ordered_json j = report(d);
+    const bool approximate = !d.approximation.empty();
     std::ostringstream out;
     for (const auto& [key, value] : j.items()) {
-        if (key == "metadata" || key == "warnings") continue;
+        if (key == "metadata" || key == "warnings" || key == "approximate") continue;
         const std::string s = plain(value);
         if (s.empty()) continue;
-        out << key << ": " << s << "\n";
+        out << key << ": " << s;
+        if (approximate && approximate_keys().count(key) && !value.is_null()) out << " (approximate)";
+        out << "\n";
     }
-    for (const std::string& w : data.info.warnings) out << "warning: " << w << "\n";
-    if (!data.info.metadata.empty()) {
+    for (const std::string& w : d.info.warnings) out << "warning: " << w << "\n";
+    if (!d.info.metadata.empty()) {
         out << "metadata:\n";
-        for (const auto& [key, value] : data.info.metadata) out << "  " << key << " = " << value << "\n";
+        for (const auto& [key, value] : d.info.metadata) out << "  " << key << " = " << value << "\n";
     }
     return out.str();
 }
 
-std::string terrain_report_json(const DataSet& data) {
+std::string terrain_report_json(const TerrainDescription& d) {
     // Metadata from arbitrary files may hold invalid UTF-8: replace, never throw.
-    return report(data).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+    return report(d).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 } // namespace overflight

@@ -1,5 +1,5 @@
 #pragma once
-// Sky and fog shared by every terrain ray caster (fast, literal, reference),
+// Sky, fog and atmosphere shared by every terrain ray caster (fast, literal, reference),
 // so that voxel images match the mesh renderers pixel for pixel.
 //
 // Based on: the hovercraft project (CMSC 23700 project 2a), "GL_EXP fog and skybox", and
@@ -11,7 +11,11 @@
 //               |P - eye| of the surface point hit through the pixel centre
 //               (GLSL: length(eye_pos)), color = f * surface + (1 - f) * fog;
 //   sky         mix(sky_horizon, sky_zenith, clamp(sin(elevation), 0, 1)),
-//               elevation of the pixel-centre ray; no fog on the sky.
+//               elevation of the pixel-centre ray; no fog on the sky;
+//   atmosphere  (Environment::atmosphere, instead of both) the aerial
+//               perspective and sky of core/AerialPerspective.h, exactly
+//               (aerial_rgb) or from per-frame tables (AerialTables).
+#include "core/AerialPerspective.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
 
@@ -34,6 +38,12 @@ Rgb8 to_rgb8(const glm::vec3& c);
 Rgb8 sky_color(const Environment& env, const glm::dvec3& dir);
 // Sky color from the sine of the ray's elevation angle.
 Rgb8 sky_color_from_sine(const Environment& env, double sin_elevation);
+
+// The exact aerial perspective (core/AerialPerspective.h) on 8-bit colors,
+// for the ray casters that evaluate every pixel: a surface point at offset
+// (point - eye) from the eye, and the sky along a ray direction (not zero).
+Rgb8 aerial_rgb(const AerialFrame& f, Rgb8 surface, const glm::dvec3& offset);
+Rgb8 aerial_sky_rgb(const AerialFrame& f, const glm::dvec3& dir);
 
 // GL_EXP fog factor for an eye distance: exp(-density * distance), 1 without fog.
 double fog_factor(const Environment& env, double distance);
@@ -93,6 +103,83 @@ public:
 private:
     glm::vec3 horizon_{0.0f}, zenith_{0.0f}; // what the table was built for
     std::vector<std::uint32_t> table_;
+};
+
+// The aerial perspective and sky of core/AerialPerspective.h tabulated once
+// per frame for one eye, so that a ray caster evaluates them per pixel with
+// table lookups and integer blends, nearest entry, no exp() (Environment::
+// atmosphere). T = exp(-beta rho0 d G(dy / H)) is one function of the air
+// column X = rho0 d G(dy / H) per channel, and G depends on the height
+// difference alone, so three 1-D tables replace a (distance, height,
+// direction) volume:
+//   column[j]   rho0 G(dy_j / H) over the terrain's height range below and
+//               above the eye (kHeights entries), so that X = d column[j];
+//   transmit[i] T at X = i X_step, 10 bits per channel 0..256 (kColumns + 1
+//               entries up to where the least absorbed channel keeps 1/1024,
+//               nearest entry within 1 color level);
+//   haze[p]     C at cos theta = 2 p / (kPhases - 1) - 1, packed 0x00BBGGRR;
+//   opacity[q]  V at sine q / (kSkies - 1), 10 bits per channel 0..256.
+// A terrain pixel is then (surface T + C (256 - T) + 128) >> 8 per channel,
+// a sky pixel (V C + 128) >> 8. Entries are 32-bit so that vectorised loops
+// can gather them. Measured against the exact model in the tests.
+class AerialTables {
+public:
+    // Builds for a frame: heights dy in [dy_lo, dy_hi] relative to the eye
+    // (clamped beyond). The large tables are rebuilt only when what they
+    // depend on changed (a benchmark's frames, a flight's transmittance).
+    void build(const AerialFrame& frame, float dy_lo, float dy_hi);
+
+    // A terrain pixel: packed surface color, eye distance, height relative to
+    // the eye, cosine of the ray's angle to the sun.
+    std::uint32_t terrain(std::uint32_t surface, float distance, float dy, float cos_sun) const {
+        const float x = distance * column_[std::size_t(height_index(dy))] + 0.5f;
+        const int i = int(x < float(kColumns) ? x : float(kColumns));
+        return blend(surface, transmit_[std::size_t(i)], haze_[std::size_t(phase_index(cos_sun))]);
+    }
+    // A sky pixel: elevation sine and cosine to the sun of its ray.
+    std::uint32_t sky(float sine, float cos_sun) const {
+        return shade_sky(opacity_[std::size_t(sky_index(sine))], haze_[std::size_t(phase_index(cos_sun))]);
+    }
+
+    // The indices, for loops that look the tables up themselves.
+    int height_index(float dy) const { return clamp_index((dy - dy_lo_) * inv_dy_step_ + 0.5f, kHeights - 1); }
+    static int phase_index(float cos_sun) { return clamp_index((cos_sun + 1.0f) * kPhaseScale + 0.5f, kPhases - 1); }
+    static int sky_index(float sine) { return clamp_index(sine * float(kSkies - 1) + 0.5f, kSkies - 1); }
+    // Converted after clamping in float, so that any input is in range.
+    static int clamp_index(float x, int last) { return int(x < 0.0f ? 0.0f : (x > float(last) ? float(last) : x)); }
+
+    // Per channel: surface T + haze (256 - T), T 10-bit fields of t.
+    static std::uint32_t blend(std::uint32_t surface, std::uint32_t t, std::uint32_t haze) {
+        std::uint32_t out = 0;
+        for (int c = 0; c < 3; ++c) {
+            const std::uint32_t w = (t >> (10 * c)) & 0x3FFu, s = (surface >> (8 * c)) & 0xFFu, h = (haze >> (8 * c)) & 0xFFu;
+            out |= ((s * w + h * (256u - w) + 128u) >> 8) << (8 * c);
+        }
+        return out;
+    }
+    // Per channel: (V haze + 128) >> 8, V 10-bit fields of v.
+    static std::uint32_t shade_sky(std::uint32_t v, std::uint32_t haze) {
+        std::uint32_t out = 0;
+        for (int c = 0; c < 3; ++c)
+            out |= ((((v >> (10 * c)) & 0x3FFu) * ((haze >> (8 * c)) & 0xFFu) + 128u) >> 8) << (8 * c);
+        return out;
+    }
+
+    const float* column() const { return column_.data(); }
+    const std::uint32_t* transmit() const { return transmit_.data(); }
+    const std::uint32_t* haze() const { return haze_.data(); }
+    const std::uint32_t* opacity() const { return opacity_.data(); }
+    float dy_lo() const { return dy_lo_; }
+    float inv_dy_step() const { return inv_dy_step_; }
+
+    static constexpr int kHeights = 256, kColumns = 4096, kPhases = 1024, kSkies = 1024;
+    static constexpr float kPhaseScale = 0.5f * float(kPhases - 1);
+
+private:
+    AerialFrame built_;
+    float dy_lo_ = 0.0f, inv_dy_step_ = 0.0f;
+    std::vector<float> column_;
+    std::vector<std::uint32_t> transmit_, haze_, opacity_;
 };
 
 // Per-channel blend towards the fog color with the surface weight a in 0..256.

@@ -23,6 +23,12 @@ void FloatingHorizon::render(const Camera& camera, const Environment& env, const
     s.frame.view = view_axes(camera, s.terrain.terrain.h_scale());
     s.sky.build(env);
     s.fog_color = pack_rgb(to_rgb8(env.fog_color));
+    s.air_on = env.atmosphere;
+    if (s.air_on) {
+        const AerialFrame air = aerial_frame(env, camera.eye.y);
+        s.air.build(air, float(s.terrain.min_height - camera.eye.y), float(s.terrain.max_height - camera.eye.y));
+        s.sun = air.sun;
+    }
     RaycastStats local;
     if (camera.projection == Projection::Shear) cast_shear(s, camera, env, options, color, depth, local);
     else if (options.tilt == TiltMethod::Exact) cast_tilt_exact(s, camera, env, options, color, depth, local);

@@ -11,7 +11,7 @@
 namespace overflight {
 
 CastTerrain::CastTerrain(const Terrain& t)
-    : terrain(t), max_height(t.max_height()), max_pyramid(t, kRunLevels) {
+    : terrain(t), max_height(t.max_height()), min_height(t.min_height()), max_pyramid(t, kRunLevels) {
     set_colors(nullptr);
     level_heights[0] = t.heights().data();
     level_cols[0] = t.cols();

@@ -47,6 +47,7 @@ struct CastTerrain {
 
     const Terrain& terrain;
     float max_height = 0; // world, over all samples
+    float min_height = 0; // world, over all samples (the aerial perspective's height range)
     const std::vector<Rgb8>* source_colors = nullptr; // what `colors` packs; null: terrain.colors()
     std::vector<std::uint32_t> colors;
     HeightPyramid max_pyramid; // heights only: run skipping

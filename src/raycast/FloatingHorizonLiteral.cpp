@@ -34,6 +34,7 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
     // Pixels from the bottom pixel's centre up to the horizon: Fig. 6's pitch.
     const double pitch = H * 0.5 - 0.5 - dpk * std::tan(glm::radians(camera.pitch));
     long long visited = 0, painted = 0;
+    const AerialFrame air = aerial_frame(env, camera.eye.y);
 
     for (int col = 0; col < W; ++col) {
         const double a = camera.u_of(col) / dpk;
@@ -60,7 +61,8 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
                         const int row = H - 1 - j;
                         // Fog at the eye distance of this pixel's ray at this slice.
                         const double len = std::sqrt(1.0 + a * a + m * m);
-                        color.at(col, row) = apply_fog(env, c, fog_factor(env, dist * len)); // line 11
+                        color.at(col, row) = env.atmosphere ? aerial_rgb(air, c, dist * (F + a * R + glm::dvec3(0, -m, 0)))
+                                                            : apply_fog(env, c, fog_factor(env, dist * len)); // line 11
                         depth.at(col, row) = Depth[std::size_t(i)];                          // line 11A
                         ++painted;
                         j += 1;          // line 12
@@ -73,7 +75,8 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
         }
         for (; j < H; ++j) { // above the last horizon: sky
             const int row = H - 1 - j;
-            color.at(col, row) = sky_color(env, F + a * R + glm::dvec3(0, -m, 0));
+            const glm::dvec3 dir = F + a * R + glm::dvec3(0, -m, 0);
+            color.at(col, row) = env.atmosphere ? aerial_sky_rgb(air, dir) : sky_color(env, dir);
             depth.at(col, row) = 1.0f;
             m -= 1.0 / dpk;
         }

@@ -10,6 +10,7 @@
 #include "raycast/FloatingHorizonState.h"
 #include "raycast/ShearResolve.h"
 
+#include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -33,6 +34,13 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
         tables.d_first = f.slices.df[0];
         tables.d_step = float(f.slices.step);
     }
+    if (s.air_on) {
+        tables.air = &s.air;
+        tables.sun_y = float(s.sun.y);
+    }
+    // The sun along each column's plane direction F + a R, per unit of view depth.
+    const glm::dvec3 F = camera.forward(), R = camera.right();
+    const double f_sun = glm::dot(F, s.sun), r_sun = glm::dot(R, s.sun);
     const int blocks = (W + kShearBlock - 1) / kShearBlock;
     std::atomic<long long> visited{0}, painted{0};
     // Thread time of each step, summed over the blocks (nanoseconds).
@@ -58,6 +66,7 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
             const double a = i < blk.n ? f.columns.a[std::size_t(c0 + i)] : 0.0;
             blk.len2[i] = float(1.0 + a * a);
             blk.jend[i] = i < blk.n ? sc.jend[std::size_t(i)] : 0;
+            blk.sun_dot[i] = float(f_sun + a * r_sun);
         }
         const auto tr = Clock::now();
         resolve_shear_block(tables, blk, H, sc.color.data(), sc.slice.data(), color.pixels.data() + c0,

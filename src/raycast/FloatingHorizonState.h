@@ -34,6 +34,21 @@ struct FloatingHorizonState {
     SkyTable sky;
     FogTable fog;
     std::uint32_t fog_color = 0; // packed
+    // Environment::atmosphere: the aerial perspective's tables (built by
+    // render) and the frame's sun direction; fog and sky above are unused.
+    bool air_on = false;
+    AerialTables air;
+    glm::dvec3 sun{0.0, 1.0, 0.0};
+
+    // A terrain hit's packed color seen from the eye (distance, height above
+    // the eye, cosine to the sun of the ray): through the air or fogged.
+    std::uint32_t hit_color(std::uint32_t color, float distance, float dy, float cos_sun) const {
+        return air_on ? air.terrain(color, distance, dy, cos_sun) : fog_blend(color, fog_color, fog.weight(distance));
+    }
+    // The sky along a ray of elevation sine `sine` and cosine to the sun `cos_sun`.
+    std::uint32_t sky_color(float sine, float cos_sun) const {
+        return air_on ? air.sky(sine, cos_sun) : sky.color(sine);
+    }
 
     // Shear: one block's cast, row-major within the block, per thread.
     struct BlockScratch {

@@ -13,6 +13,7 @@
 #include "raycast/FloatingHorizonState.h"
 #include "raycast/RayMarcher.h"
 
+#include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <tbb/parallel_for.h>
 
@@ -32,7 +33,7 @@ void prepare_tilt(FloatingHorizonState& s, const Camera& camera, const Environme
 // Resolves the tilted image. For image row r cast as row i of the planes,
 // row_hits(r, i) returns a callable hit(c, dv, rgb): true when pixel c's ray
 // meets the terrain within the far plane, at view depth dv along F', with
-// the fogged packed color rgb. Those pixels get that color and dv's window
+// the packed color rgb as seen from the eye (FloatingHorizonState::hit_color). Those pixels get that color and dv's window
 // depth; the others the sky and depth 1; rows not cast, the ray marcher's
 // pixels (counted in stats.fallback_pixels).
 template <class RowHits>
@@ -43,9 +44,11 @@ void resolve_tilt(const FloatingHorizonState& s, const Camera& camera, const Env
     const TiltRows& tr = s.tilt_rows;
     const double fp = camera.focal_px();
     const double p = glm::radians(camera.pitch), sp = std::sin(p), cp = std::cos(p);
+    const double fs = glm::dot(camera.view_axis(), s.sun), us = glm::dot(camera.view_up(), s.sun);
+    const double rs = glm::dot(camera.right(), s.sun);
     RayMarcher marcher(s.terrain.terrain, env);
     marcher.set_colors(s.terrain.source_colors);
-    const RayMarcher::Frame mf = RayMarcher::frame(camera);
+    const RayMarcher::Frame mf = marcher.frame(camera);
     std::atomic<long long> painted{0};
     std::atomic<int> fallback{0};
     tbb::parallel_for(0, H, [&](int r) {
@@ -63,6 +66,7 @@ void resolve_tilt(const FloatingHorizonState& s, const Camera& camera, const Env
         const auto hit = row_hits(r, j - tr.j_lo);
         const double v = camera.v_of(r);
         const double up = sp + (v / fp) * cp;
+        const double row_sun = fs + (v / fp) * us; // (F' + (v/fp) U') . sun
         for (int c = 0; c < W; ++c) {
             double dv = 0;
             std::uint32_t rgb = 0;
@@ -73,7 +77,7 @@ void resolve_tilt(const FloatingHorizonState& s, const Camera& camera, const Env
             } else {
                 const double u = camera.u_of(c);
                 const double len = std::sqrt(1.0 + (u / fp) * (u / fp) + (v / fp) * (v / fp)); // per unit F' depth
-                color.at(c, r) = unpack_rgb(s.sky.color(float(up / len)));
+                color.at(c, r) = unpack_rgb(s.sky_color(float(up / len), float((row_sun + (u / fp) * rs) / len)));
                 depth.at(c, r) = 1.0f;
             }
         }

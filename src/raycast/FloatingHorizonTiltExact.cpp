@@ -38,14 +38,18 @@ void cast_tilt_exact(FloatingHorizonState& s, const Camera& camera, const Enviro
     stats.samples_visited = visited;
     stats.ms_cast = ms_since(t0);
 
-    // Each tilted pixel from the plane nearest to its ray, fogged at the eye
-    // distance of the cast ray (plane cs, row i) at its slice.
+    // Each tilted pixel from the plane nearest to its ray, fogged (or seen
+    // through the air) at the eye distance of the cast ray (plane cs, row i)
+    // at its slice.
     const double fp = camera.focal_px();
+    const double f_sun = glm::dot(camera.forward(), s.sun), r_sun = glm::dot(camera.right(), s.sun);
+    const float sun_y = float(s.sun.y);
     auto row_hits = [&](int r, int i) {
         const double w = s.tilt_rows.w[std::size_t(r)];
         const float m_i = f.rows.m[std::size_t(i)];
         const double scale = fp_h / (fp * w);
-        return [&s, &f, &camera, w, m_i, scale, i, ws, cstride](int c, double& dv, std::uint32_t& rgb) {
+        return [&s, &f, &camera, w, m_i, scale, i, ws, cstride, f_sun, r_sun, sun_y](int c, double& dv,
+                                                                                    std::uint32_t& rgb) {
             const double u = camera.u_of(c);
             const int cs = std::clamp(int(std::floor(u * scale + ws * 0.5)), 0, ws - 1);
             if (i >= s.tilt_jend[std::size_t(cs)]) return false;
@@ -55,7 +59,8 @@ void cast_tilt_exact(FloatingHorizonState& s, const Camera& camera, const Enviro
             if (!(dv <= camera.far)) return false;
             const double a = f.columns.a[std::size_t(cs)];
             const float cast_len = std::sqrt(float(1.0 + a * a) + m_i * m_i);
-            rgb = fog_blend(s.tilt_color[e], s.fog_color, s.fog.weight(f.slices.df[k] * cast_len));
+            const float cos_sun = (float(f_sun + a * r_sun) + m_i * sun_y) / cast_len;
+            rgb = s.hit_color(s.tilt_color[e], f.slices.df[k] * cast_len, f.slices.df[k] * m_i, cos_sun);
             return true;
         };
     };

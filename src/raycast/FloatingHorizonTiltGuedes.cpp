@@ -31,7 +31,7 @@ float bits_float(std::uint32_t u) {
     return f;
 }
 
-// Guedes' Algorithm 1 for column c: fogged colors and the view depth along
+// Guedes' Algorithm 1 for column c: fogged (or aerial) colors and the view depth along
 // F' (as float bits) of rows [0, returned) go to out_c/out_d. Returns the rows
 // painted; `visited` receives the samples read.
 int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int c, std::uint32_t* out_c,
@@ -47,6 +47,7 @@ int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int 
     const double ux = f.columns.ux[std::size_t(c)], uz = f.columns.uz[std::size_t(c)];
     const double a = f.columns.a[std::size_t(c)];
     const double lat = std::sqrt(1.0 + a * a); // horizontal length per unit F
+    const double lat_sun = glm::dot(camera.forward() + a * camera.right(), s.sun); // per unit F
     // The state as if stepped from the eye to the first slice inside the terrain.
     double v = f.slices.d[std::size_t(k0)];
     double x = f.view.eye_gx + v * ux, y = f.view.eye_gz + v * uz;
@@ -62,7 +63,7 @@ int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int 
             const std::uint32_t col = s.terrain.colors[ci];
             do {
                 const double dist = std::sqrt(v * v * lat * lat + (z - ey) * (z - ey));
-                out_c[row] = s.fog.enabled() ? fog_blend(col, s.fog_color, s.fog.weight(float(dist))) : col;
+                out_c[row] = s.hit_color(col, float(dist), float(z - ey), float((v * lat_sun + (z - ey) * s.sun.y) / dist));
                 out_d[row] = float_bits(float(d));
                 if (row + 1 >= rc) {
                     ++row;

@@ -28,10 +28,11 @@ bool clip_axis(double a, double d, double lo, double hi, double& t0, double& t1)
 
 } // namespace
 
-RayMarcher::Frame RayMarcher::frame(const Camera& camera) {
+RayMarcher::Frame RayMarcher::frame(const Camera& camera) const {
     Frame f;
     f.view_projection = camera.projection_matrix() * camera.view_matrix();
     f.inverse_view_projection = glm::inverse(f.view_projection);
+    f.air = aerial_frame(env_, camera.eye.y);
     return f;
 }
 
@@ -129,13 +130,14 @@ void RayMarcher::shade_pixel(const Camera& camera, const Frame& frame, SurfaceMo
     const glm::dvec3 a = glm::dvec3(pn) / pn.w, b = glm::dvec3(pf) / pf.w;
     const Hit hit = intersect(a, b, surface);
     if (!hit.hit) {
-        color = sky_color(env_, b - a);
+        color = env_.atmosphere ? aerial_sky_rgb(frame.air, b - a) : sky_color(env_, b - a);
         depth = 1.0f;
         return;
     }
     const glm::dvec4 clip = frame.view_projection * glm::dvec4(hit.point, 1.0);
     depth = float(std::clamp((clip.z / clip.w + 1.0) * 0.5, 0.0, 1.0));
-    color = apply_fog(env_, hit.surface, fog_factor(env_, glm::length(hit.point - camera.eye)));
+    color = env_.atmosphere ? aerial_rgb(frame.air, hit.surface, hit.point - camera.eye)
+                            : apply_fog(env_, hit.surface, fog_factor(env_, glm::length(hit.point - camera.eye)));
 }
 
 void RayMarcher::render(const Camera& camera, SurfaceModel surface, ColorImage& color, DepthImage& depth) const {

@@ -15,6 +15,7 @@
 //              samples (Amanatides-Woo traversal of the cells around samples);
 //   bilinear - march with steps of a quarter cell, then bisection.
 // The color is the nearest sample's; fog and sky follow Atmosphere.h.
+#include "core/AerialPerspective.h"
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
@@ -42,8 +43,9 @@ public:
     struct Frame {
         glm::dmat4 view_projection;
         glm::dmat4 inverse_view_projection;
+        AerialFrame air; // the environment's atmosphere at the eye (Environment::atmosphere)
     };
-    static Frame frame(const Camera& camera);
+    Frame frame(const Camera& camera) const;
 
     struct Hit {
         bool hit = false;

@@ -80,7 +80,8 @@ void write_run(const std::uint32_t* px, const float* z, int n, Rgb8* oc, float* 
 // with both, lane i is terrain below jend[i]. The lanes are independent; GCC
 // 12 vectorises the sky loop but not the fog loop for generic x86-64 (it
 // would need gathers), hence resolve_rows_avx2.
-template <bool kTerrain, bool kSky>
+// kAir: the aerial perspective (t.air) instead of fog and sky gradient.
+template <bool kTerrain, bool kSky, bool kAir>
 void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, int H, int j0, int j1,
                            const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
                            std::size_t W) {
@@ -95,7 +96,10 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
         alignas(64) std::uint32_t px[kShearBlock];
         alignas(64) float zs[kShearBlock];
         ray_lengths(blk.len2, m * m, lens);
-        if constexpr (kSky)
+        if constexpr (kSky && kAir)
+            for (int i = 0; i < kShearBlock; ++i)
+                skies[i] = t.air->sky(m / lens[i], (blk.sun_dot[i] + m * t.sun_y) / lens[i]);
+        else if constexpr (kSky)
             for (int i = 0; i < kShearBlock; ++i) skies[i] = SkyTable::lookup(t.sky, m / lens[i]);
         for (int i = 0; i < kShearBlock; ++i) {
             const float len = lens[i];
@@ -107,9 +111,14 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
                 // rather than a masked load.
                 const int k = int(ss[i]) & -int(terrain);
                 z = t.slice_depth[k];
-                // FogTable::weight (the distance is within the table by construction).
-                const int w = std::min(int(t.slice_d[k] * len * fog_step + 0.5f), FogTable::kEntries);
-                fogged = fog_blend(sc[i], t.fog_color, fog[w]);
+                const float d = t.slice_d[k];
+                if constexpr (kAir) {
+                    fogged = t.air->terrain(sc[i], d * len, d * m, (blk.sun_dot[i] + m * t.sun_y) / len);
+                } else {
+                    // FogTable::weight (the distance is within the table by construction).
+                    const int w = std::min(int(d * len * fog_step + 0.5f), FogTable::kEntries);
+                    fogged = fog_blend(sc[i], t.fog_color, fog[w]);
+                }
             }
             px[i] = terrain ? fogged : skies[i];
             zs[i] = terrain ? z : 1.0f;
@@ -119,33 +128,174 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
     }
 }
 
+// The block's rows with the portable kernel: all terrain below every
+// column's horizon (jmin), both up to the highest (jmax), all sky above.
+template <bool kAir>
+void resolve_block_portable(const ShearResolveTables& t, const ShearBlock& blk, int H, int jmin, int jmax,
+                            const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                            std::size_t W) {
+    resolve_rows_portable<true, false, kAir>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+    resolve_rows_portable<true, true, kAir>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    resolve_rows_portable<false, true, kAir>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+}
+
 #if OVERFLIGHT_RESOLVE_AVX2
-// resolve_rows_portable with AVX2 gathers (GCC does not emit them for generic
-// x86-64 tuning): the same operations in the same order, so the same bits.
-// kEven: the slices are evenly spaced (ShearResolveTables::d_step), so the
-// view depth is computed rather than gathered. A full block's pixels go to
-// the images straight from the registers.
-template <bool kTerrain, bool kSky, bool kEven>
-__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const ShearBlock& blk, int H,
-                                                       int j0, int j1, const std::uint32_t* color,
-                                                       const std::uint32_t* slice, Rgb8* out_c, float* out_d,
-                                                       std::size_t W) {
-    const int* fog = reinterpret_cast<const int*>(t.fog->entries());
-    const int* sky_table = reinterpret_cast<const int*>(t.sky);
-    const __m256 fog_step = _mm256_set1_ps(t.fog->inv_step());
-    const __m256 half = _mm256_set1_ps(0.5f), sky_scale = _mm256_set1_ps(float(SkyTable::kEntries - 1));
-    const __m256 one = _mm256_set1_ps(1.0f);
-    const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
-    const __m256i fog_last = _mm256_set1_epi32(FogTable::kEntries), sky_last = _mm256_set1_epi32(SkyTable::kEntries - 1);
-    const __m256i zero = _mm256_setzero_si256(), full = _mm256_set1_epi32(256);
-    const __m256i mask_rb = _mm256_set1_epi32(0xFF00FF), mask_g = _mm256_set1_epi32(0x00FF00);
-    const __m256i fog_rb = _mm256_set1_epi32(int(t.fog_color & 0xFF00FFu));
-    const __m256i fog_g = _mm256_set1_epi32(int(t.fog_color & 0x00FF00u));
-    const __m256i round_rb = _mm256_set1_epi32(0x800080), round_g = _mm256_set1_epi32(0x008000);
+// Lanes i..i+7 of an image row's run: with `direct` (a full block) straight
+// to the images (row_c, row_d: the run's first pixel), else to px/zs for
+// write_run.
+__attribute__((target("avx2"))) inline void store_lanes(__m256i pixel, __m256 depth, int i, bool direct,
+                                                         std::uint32_t* px, float* zs, Rgb8* row_c, float* row_d) {
+    if (!direct) {
+        _mm256_store_si256(reinterpret_cast<__m256i*>(px + i), pixel);
+        _mm256_store_ps(zs + i, depth);
+        return;
+    }
     // 8 packed colors to 24 bytes of Rgb8: 12 bytes per 128-bit lane, then the lanes joined.
     const __m256i rgb_bytes = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
                                                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
-    const __m256i rgb_join = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7);
+    const __m256i rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(pixel, rgb_bytes),
+                                                    _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 7, 7));
+    char* oc = reinterpret_cast<char*>(row_c + i);
+    // 32 bytes hold these 24 and the next 8 pixels' first 8, which the next
+    // store overwrites; the last 8 pixels store exactly 24 (the next block's
+    // pixels may be another thread's).
+    if (i + 8 < kShearBlock) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(oc), rgb);
+    } else {
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(oc), _mm256_castsi256_si128(rgb));
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(oc + 16), _mm256_extracti128_si256(rgb, 1));
+    }
+    _mm256_storeu_ps(row_d + i, depth);
+}
+
+// The pixels of 8 lanes, GL_EXP fog and sky gradient: resolve_rows_portable's
+// operations lane by lane. m: the row's slope; len, d: each lane's ray length
+// per unit of view depth and view depth; c: the surface colors.
+struct FogLanes {
+    const ShearResolveTables& t;
+
+    template <bool kTerrain, bool kSky>
+    __attribute__((target("avx2"))) __m256i shade(const ShearBlock&, int, __m256 m, __m256 len, __m256 d, __m256i terrain,
+                                                  __m256i c) const {
+        const __m256 half = _mm256_set1_ps(0.5f);
+        __m256i fogged = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
+        if constexpr (kTerrain) {
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_set1_ps(t.fog->inv_step())), half);
+            const __m256i a = _mm256_i32gather_epi32(
+                reinterpret_cast<const int*>(t.fog->entries()),
+                _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(FogTable::kEntries)), 4);
+            const __m256i b = _mm256_sub_epi32(_mm256_set1_epi32(256), a);
+            const __m256i mask_rb = _mm256_set1_epi32(0xFF00FF), mask_g = _mm256_set1_epi32(0x00FF00);
+            // fog_blend, lane by lane.
+            const __m256i rb = _mm256_add_epi32(
+                _mm256_mullo_epi32(_mm256_and_si256(c, mask_rb), a),
+                _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int(t.fog_color & 0xFF00FFu)), b),
+                                 _mm256_set1_epi32(0x800080)));
+            const __m256i g = _mm256_add_epi32(
+                _mm256_mullo_epi32(_mm256_and_si256(c, mask_g), a),
+                _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int(t.fog_color & 0x00FF00u)), b),
+                                 _mm256_set1_epi32(0x008000)));
+            fogged = _mm256_or_si256(_mm256_and_si256(_mm256_srli_epi32(rb, 8), mask_rb),
+                                     _mm256_and_si256(_mm256_srli_epi32(g, 8), mask_g));
+        }
+        if constexpr (kSky) {
+            const __m256 x = _mm256_add_ps(
+                _mm256_mul_ps(_mm256_div_ps(m, len), _mm256_set1_ps(float(SkyTable::kEntries - 1))), half);
+            const __m256i e = _mm256_max_epi32(
+                _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(SkyTable::kEntries - 1)), _mm256_setzero_si256());
+            sky = _mm256_i32gather_epi32(reinterpret_cast<const int*>(t.sky), e, 4);
+        }
+        return _mm256_blendv_epi8(sky, fogged, terrain);
+    }
+};
+
+// AerialTables::clamp_index, lane by lane.
+__attribute__((target("avx2"))) inline __m256i clamp_lanes(__m256 x, float last) {
+    return _mm256_cvttps_epi32(_mm256_min_ps(_mm256_max_ps(x, _mm256_setzero_ps()), _mm256_set1_ps(last)));
+}
+
+// AerialTables::blend (and, without the surface's share, shade_sky) of 8
+// lanes: each channel's (s w + h (256 - w) + 128) >> 8 is at most 65408, so
+// red and blue share 16-bit multiplies (the weights are 10-bit fields of t).
+__attribute__((target("avx2"))) inline __m256i air_blend(__m256i surface, __m256i t, __m256i haze,
+                                                          bool with_surface = true) {
+    const __m256i rb = _mm256_set1_epi32(0x00FF00FF), byte = _mm256_set1_epi32(0xFF);
+    const __m256i full = _mm256_set1_epi32(0x01000100), round = _mm256_set1_epi32(0x00800080);
+    const __m256i w_rb = _mm256_or_si256(_mm256_and_si256(t, _mm256_set1_epi32(0x3FF)),
+                                         _mm256_and_si256(_mm256_srli_epi32(t, 4), _mm256_set1_epi32(0x3FF0000)));
+    const __m256i w_g = _mm256_and_si256(_mm256_srli_epi32(t, 10), _mm256_set1_epi32(0x3FF));
+    const __m256i h_rb = _mm256_and_si256(haze, rb), h_g = _mm256_and_si256(_mm256_srli_epi32(haze, 8), byte);
+    __m256i out_rb, out_g;
+    if (with_surface) {
+        out_rb = _mm256_add_epi16(_mm256_mullo_epi16(_mm256_and_si256(surface, rb), w_rb),
+                                  _mm256_mullo_epi16(h_rb, _mm256_sub_epi16(full, w_rb)));
+        out_g = _mm256_add_epi16(_mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(surface, 8), byte), w_g),
+                                 _mm256_mullo_epi16(h_g, _mm256_sub_epi16(full, w_g)));
+    } else {
+        out_rb = _mm256_mullo_epi16(h_rb, w_rb);
+        out_g = _mm256_mullo_epi16(h_g, w_g);
+    }
+    out_rb = _mm256_srli_epi16(_mm256_add_epi16(out_rb, round), 8);
+    out_g = _mm256_srli_epi16(_mm256_add_epi16(out_g, round), 8);
+    return _mm256_or_si256(out_rb, _mm256_slli_epi32(out_g, 8));
+}
+
+// The pixels of 8 lanes through the air (t.air): AerialTables' lookups and
+// blends lane by lane, as FogLanes.
+struct AirLanes {
+    const ShearResolveTables& t;
+
+    template <bool kTerrain, bool kSky>
+    __attribute__((target("avx2"))) __m256i shade(const ShearBlock& blk, int i, __m256 m, __m256 len, __m256 d,
+                                                  __m256i terrain, __m256i c) const {
+        const AerialTables& air = *t.air;
+        const __m256 half = _mm256_set1_ps(0.5f);
+        const __m256 cos_sun = _mm256_div_ps(
+            _mm256_add_ps(_mm256_loadu_ps(blk.sun_dot + i), _mm256_mul_ps(m, _mm256_set1_ps(t.sun_y))), len);
+        const __m256i p = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(cos_sun, _mm256_set1_ps(1.0f)),
+                                                            _mm256_set1_ps(AerialTables::kPhaseScale)),
+                                              half),
+                                float(AerialTables::kPhases - 1));
+        const __m256i h = _mm256_i32gather_epi32(reinterpret_cast<const int*>(air.haze()), p, 4);
+        __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
+        if constexpr (kTerrain) {
+            const __m256 dy = _mm256_mul_ps(d, m);
+            const __m256i hj = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, _mm256_set1_ps(air.dy_lo())),
+                                                                 _mm256_set1_ps(air.inv_dy_step())),
+                                                   half),
+                                     float(AerialTables::kHeights - 1));
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_i32gather_ps(air.column(), hj, 4)),
+                                           half);
+            const __m256i w = _mm256_i32gather_epi32(
+                reinterpret_cast<const int*>(air.transmit()),
+                _mm256_cvttps_epi32(_mm256_min_ps(x, _mm256_set1_ps(float(AerialTables::kColumns)))), 4);
+            lit = air_blend(c, w, h);
+        }
+        if constexpr (kSky) {
+            const __m256i q = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_div_ps(m, len),
+                                                                _mm256_set1_ps(float(AerialTables::kSkies - 1))),
+                                                  half),
+                                    float(AerialTables::kSkies - 1));
+            sky = air_blend(_mm256_setzero_si256(),
+                            _mm256_i32gather_epi32(reinterpret_cast<const int*>(air.opacity()), q, 4), h, false);
+        }
+        return _mm256_blendv_epi8(sky, lit, terrain);
+    }
+};
+
+// resolve_rows_portable with AVX2 gathers (GCC does not emit them for generic
+// x86-64 tuning): the same operations in the same order, so the same bits;
+// the pixels of each 8 lanes come from `lanes` (FogLanes or AirLanes).
+// kEven: the slices are evenly spaced (ShearResolveTables::d_step), so the
+// view depth is computed rather than gathered. A full block's pixels go to
+// the images straight from the registers.
+template <bool kTerrain, bool kSky, bool kEven, class Lanes>
+__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const Lanes& lanes,
+                                                       const ShearBlock& blk, int H, int j0, int j1,
+                                                       const std::uint32_t* color, const std::uint32_t* slice,
+                                                       Rgb8* out_c, float* out_d, std::size_t W) {
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
         const float mj = t.row_m[j];
@@ -162,52 +312,38 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
                 kTerrain && kSky
                     ? _mm256_cmpgt_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(blk.jend + i)), jv)
                     : _mm256_set1_epi32(kTerrain ? -1 : 0);
-            __m256i fogged = zero, sky = zero;
-            __m256 z = one;
+            __m256 z = one, d = one;
+            __m256i c = _mm256_setzero_si256();
             if constexpr (kTerrain) {
+                // Sky lanes read slice 0 (their entries are stale).
                 const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
                 z = _mm256_i32gather_ps(t.slice_depth, k, 4);
-                const __m256 d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
-                                       : _mm256_i32gather_ps(t.slice_d, k, 4);
-                const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), fog_step), half);
-                const __m256i a = _mm256_i32gather_epi32(fog, _mm256_min_epi32(_mm256_cvttps_epi32(x), fog_last), 4);
-                const __m256i b = _mm256_sub_epi32(full, a);
-                const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
-                // fog_blend, lane by lane.
-                const __m256i rb = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_and_si256(c, mask_rb), a),
-                                                    _mm256_add_epi32(_mm256_mullo_epi32(fog_rb, b), round_rb));
-                const __m256i g = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_and_si256(c, mask_g), a),
-                                                   _mm256_add_epi32(_mm256_mullo_epi32(fog_g, b), round_g));
-                fogged = _mm256_or_si256(_mm256_and_si256(_mm256_srli_epi32(rb, 8), mask_rb),
-                                         _mm256_and_si256(_mm256_srli_epi32(g, 8), mask_g));
+                d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
+                          : _mm256_i32gather_ps(t.slice_d, k, 4);
+                c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
             }
-            if constexpr (kSky) {
-                const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_div_ps(m, len), sky_scale), half);
-                const __m256i e = _mm256_max_epi32(_mm256_min_epi32(_mm256_cvttps_epi32(x), sky_last), zero);
-                sky = _mm256_i32gather_epi32(sky_table, e, 4);
-            }
-            const __m256i pixel = _mm256_blendv_epi8(sky, fogged, terrain);
-            const __m256 depth = _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain));
-            if (direct) {
-                const __m256i rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(pixel, rgb_bytes), rgb_join);
-                char* oc = reinterpret_cast<char*>(out_c + row + std::size_t(i));
-                // 32 bytes hold these 24 and the next 8 pixels' first 8, which
-                // the next store overwrites; the last 8 pixels store exactly 24
-                // (the next block's pixels may be another thread's).
-                if (i + 8 < kShearBlock) {
-                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(oc), rgb);
-                } else {
-                    _mm_storeu_si128(reinterpret_cast<__m128i*>(oc), _mm256_castsi256_si128(rgb));
-                    _mm_storel_epi64(reinterpret_cast<__m128i*>(oc + 16), _mm256_extracti128_si256(rgb, 1));
-                }
-                _mm256_storeu_ps(out_d + row + std::size_t(i), depth);
-            } else {
-                _mm256_store_si256(reinterpret_cast<__m256i*>(px + i), pixel);
-                _mm256_store_ps(zs + i, depth);
-            }
+            store_lanes(lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c),
+                        _mm256_blendv_ps(one, z, _mm256_castsi256_ps(terrain)), i, direct, px, zs, out_c + row,
+                        out_d + row);
         }
         if (!direct) write_run(px, zs, blk.n, out_c + row, out_d + row);
     }
+}
+
+// The block's rows with the AVX2 kernel: all terrain below every column's
+// horizon (jmin), both up to the highest (jmax), all sky above.
+template <class Lanes>
+void resolve_block_avx2(const ShearResolveTables& t, const Lanes& lanes, const ShearBlock& blk, int H, int jmin,
+                        int jmax, const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                        std::size_t W) {
+    if (t.d_step > 0.0f) {
+        resolve_rows_avx2<true, false, true>(t, lanes, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+        resolve_rows_avx2<true, true, true>(t, lanes, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    } else {
+        resolve_rows_avx2<true, false, false>(t, lanes, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+        resolve_rows_avx2<true, true, false>(t, lanes, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    }
+    resolve_rows_avx2<false, true, false>(t, lanes, blk, H, jmax, H, color, slice, out_c, out_d, W);
 }
 #endif
 
@@ -239,20 +375,13 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     if (kernel == ResolveKernel::Auto) kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
 #if OVERFLIGHT_RESOLVE_AVX2
     if (kernel == ResolveKernel::Avx2) {
-        if (t.d_step > 0.0f) {
-            resolve_rows_avx2<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-            resolve_rows_avx2<true, true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-        } else {
-            resolve_rows_avx2<true, false, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-            resolve_rows_avx2<true, true, false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-        }
-        resolve_rows_avx2<false, true, false>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+        if (t.air) resolve_block_avx2(t, AirLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        else resolve_block_avx2(t, FogLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         return;
     }
 #endif
-    resolve_rows_portable<true, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
-    resolve_rows_portable<true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-    resolve_rows_portable<false, true>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+    if (t.air) resolve_block_portable<true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    else resolve_block_portable<false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
 }
 
 } // namespace overflight

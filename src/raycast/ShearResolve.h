@@ -30,6 +30,10 @@ struct ShearResolveTables {
     const FogTable* fog = nullptr;
     std::uint32_t fog_color = 0;        // 0x00BBGGRR
     const std::uint32_t* sky = nullptr; // SkyTable::entries()
+    // Environment::atmosphere: the aerial perspective and its sky instead of
+    // fog and sky gradient; sun_y is the sun direction's Y.
+    const AerialTables* air = nullptr;
+    float sun_y = 0.0f;
     // Evenly spaced slices (d_step > 0): slice_d[k] is d_first + d_step * k,
     // computed in float in that order, so a kernel may compute it rather than
     // read it. 0: read slice_d.
@@ -41,6 +45,7 @@ struct ShearBlock {
     int n = 0;                 // image columns in the block (<= kShearBlock; the rest is padding)
     float len2[kShearBlock];   // |F + a R|^2 of each column's plane (1 for padding)
     int jend[kShearBlock];     // pixels painted, bottom-up (0 for padding)
+    float sun_dot[kShearBlock]; // with air: (F + a R) . sun of each column's plane (0 for padding)
 };
 
 // The kernel that computes the pixels (both give the same bits). Auto picks
@@ -53,8 +58,9 @@ bool resolve_kernel_available(ResolveKernel kernel);
 // the unfogged sample color (0x00BBGGRR) and the slice index of pixel j
 // (bottom-up) of column i wherever j < jend[i]; other entries may hold
 // anything. Pixel j < jend[i] gets the color fogged at the eye distance
-// d_k |ray_j| and depth slice_depth[k]; the others get the sky color of their
-// ray's elevation and depth 1. The results are written to out_c/out_d (the
+// d_k |ray_j| (with air: seen through the air at that distance and the height
+// d_k m_j above the eye) and depth slice_depth[k]; the others get the sky
+// color of their ray's elevation (with air: and angle to the sun) and depth 1. The results are written to out_c/out_d (the
 // images at the block's first column, W pixels per row), blk.n pixels per
 // row and no more.
 void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int H, const std::uint32_t* color,

@@ -45,9 +45,31 @@ Camera flight_camera(const Terrain& t, double fov) {
     return cam;
 }
 
-Environment view_environment(const Environment& env, const Terrain& t, bool fog, bool lighting) {
+FogMode next_fog_mode(FogMode mode) {
+    switch (mode) {
+    case FogMode::Off: return FogMode::Exp;
+    case FogMode::Exp: return FogMode::Atmosphere;
+    default: return FogMode::Off;
+    }
+}
+
+const char* to_string(FogMode mode) {
+    switch (mode) {
+    case FogMode::Exp: return "GL_EXP";
+    case FogMode::Atmosphere: return "atmosphere";
+    default: return "off";
+    }
+}
+
+FogMode fog_mode_of(const Environment& env) {
+    if (env.atmosphere) return FogMode::Atmosphere;
+    return env.fog_density > 0 ? FogMode::Exp : FogMode::Off;
+}
+
+Environment view_environment(const Environment& env, const Terrain& t, FogMode fog, bool lighting) {
     Environment e = env;
-    if (!fog) e.fog_density = 0;
+    e.atmosphere = fog == FogMode::Atmosphere;
+    if (fog != FogMode::Exp) e.fog_density = 0;
     else if (!(e.fog_density > 0))
         e.fog_density = float(2.0 / std::max(1.0, std::hypot(double(t.width()), double(t.depth()))));
     if (!lighting) bake_lighting(e);
@@ -60,7 +82,7 @@ FlightSession::FlightSession(const Terrain& terrain, const Environment& environm
       hovercraft_(place_vehicle(terrain, options.start)), chase_(chase_params(terrain)),
       camera_(flight_camera(terrain, options.fov)), clock_(hovercraft_.params().step) {
     chase_.reset(terrain_, hovercraft_.state(), camera_);
-    toggles_.fog = environment.fog_density > 0;
+    toggles_.fog = fog_mode_of(environment);
     toggles_.hud = options.hud;
     toggles_.lighting = options.lighting;
     toggles_.shadows = environment.shadows;
@@ -94,7 +116,7 @@ const std::vector<Key>& FlightSession::begin_frame() {
     commands_.clear();
     for (Key k : pending_) {
         switch (k) {
-        case Key::Fog: toggles_.fog = !toggles_.fog; break;
+        case Key::Fog: toggles_.fog = next_fog_mode(toggles_.fog); break;
         case Key::Lighting: toggles_.lighting = !toggles_.lighting; break;
         case Key::Wireframe: toggles_.wireframe = !toggles_.wireframe; break;
         case Key::Hud: toggles_.hud = !toggles_.hud; break;

@@ -37,9 +37,19 @@ struct FlightSessionOptions {
     bool lighting = true;           // start with sun lighting (false: baked, the `1` key toggles)
 };
 
+// What `f` cycles through: no fog, the hovercraft paper's GL_EXP fog, the
+// atmosphere (aerial perspective and a sky that follows the sun,
+// Environment::atmosphere), then no fog again.
+enum class FogMode { Off, Exp, Atmosphere };
+FogMode next_fog_mode(FogMode mode);
+const char* to_string(FogMode mode); // "off", "GL_EXP", "atmosphere"
+// The mode an environment asks for: atmosphere, else fog if it has a density.
+FogMode fog_mode_of(const Environment& env);
+
 // The viewer's state that command keys toggle.
 struct ViewToggles {
-    bool fog = false, lighting = true, wireframe = false, hud = true;
+    FogMode fog = FogMode::Off;
+    bool lighting = true, wireframe = false, hud = true;
     bool shadows = false; // the terrain's cast shadows (s)
 };
 
@@ -49,7 +59,7 @@ Camera flight_camera(const Terrain& terrain, double fov);
 
 // The data set's environment with the fog (f) and lighting (1: sun or baked) toggles applied;
 // a data set without fog gets a density that fades the far side of the map.
-Environment view_environment(const Environment& env, const Terrain& terrain, bool fog, bool lighting);
+Environment view_environment(const Environment& env, const Terrain& terrain, FogMode fog, bool lighting);
 
 class FlightSession {
 public:

@@ -96,7 +96,7 @@ TEST(FlightSession, CommandKeysToggleTheViewOrReachTheCaller) {
                                   {Key::DetailUp, 5, 6},
                                   {Key::Screenshot, 7, 9},
                                   {Key::Hud, 8, 9}}));
-    const bool fog0 = s.toggles().fog;
+    const FogMode fog0 = s.toggles().fog;
     std::vector<ViewToggles> toggles;
     std::vector<std::vector<Key>> commands;
     while (!s.finished()) {
@@ -107,7 +107,7 @@ TEST(FlightSession, CommandKeysToggleTheViewOrReachTheCaller) {
     }
     ASSERT_EQ(commands.size(), 10u);
     EXPECT_EQ(toggles[1].fog, fog0);
-    EXPECT_EQ(toggles[2].fog, !fog0);
+    EXPECT_EQ(toggles[2].fog, next_fog_mode(fog0));
     EXPECT_FALSE(toggles[2].wireframe);
     EXPECT_TRUE(toggles[3].wireframe);
     EXPECT_FALSE(toggles[3].lighting);
@@ -119,7 +119,35 @@ TEST(FlightSession, CommandKeysToggleTheViewOrReachTheCaller) {
     EXPECT_TRUE(commands[8].empty());
     // The environment follows the toggles: no lighting = the terrain's colors as they are.
     EXPECT_TRUE(s.environment().baked);
-    EXPECT_EQ(s.environment().fog_density > 0, !fog0);
+    EXPECT_EQ(s.environment().fog_density > 0, next_fog_mode(fog0) == FogMode::Exp);
+    EXPECT_EQ(s.environment().atmosphere, next_fog_mode(fog0) == FogMode::Atmosphere);
+}
+
+// f cycles off -> GL_EXP fog -> atmosphere -> off; the environment follows.
+TEST(FlightSession, FogKeyCyclesFogAndAtmosphere) {
+    DataSet d = island();
+    d.environment.fog_density = 0;
+    FlightSession s(d.terrain, d.environment, scripted(4, {{Key::Fog, 1, 2}, {Key::Fog, 2, 3}, {Key::Fog, 3, 4}}));
+    std::vector<FogMode> modes;
+    std::vector<Environment> envs;
+    while (!s.finished()) {
+        s.begin_frame();
+        modes.push_back(s.toggles().fog);
+        envs.push_back(s.environment());
+        s.advance(0.0);
+        s.end_frame();
+    }
+    EXPECT_EQ(modes, (std::vector<FogMode>{FogMode::Off, FogMode::Exp, FogMode::Atmosphere, FogMode::Off}));
+    EXPECT_EQ(envs[0].fog_density, 0.0f);
+    EXPECT_GT(envs[1].fog_density, 0.0f);
+    EXPECT_FALSE(envs[1].atmosphere);
+    EXPECT_TRUE(envs[2].atmosphere);
+    EXPECT_EQ(envs[2].fog_density, 0.0f);
+    EXPECT_FALSE(envs[3].atmosphere);
+    EXPECT_STREQ(to_string(FogMode::Atmosphere), "atmosphere");
+    // An environment with the atmosphere on starts in that mode (fly --atmosphere).
+    d.environment.atmosphere = true;
+    EXPECT_EQ(FlightSession(d.terrain, d.environment, scripted(1, {})).toggles().fog, FogMode::Atmosphere);
 }
 
 // `s` toggles the terrain's shadows; `t` and `T` move the sun half an hour

@@ -33,6 +33,7 @@ ShearBlock block(int n, const std::vector<int>& jend, const std::vector<float>& 
     for (int i = 0; i < kShearBlock; ++i) {
         b.jend[i] = i < n ? jend[std::size_t(i)] : 0;
         b.len2[i] = i < n ? len2[std::size_t(i)] : 1.0f;
+        b.sun_dot[i] = 0.0f;
     }
     return b;
 }
@@ -127,6 +128,50 @@ TEST(ShearResolve, FogAtTheEyeDistanceOfThePixel) {
     }
 }
 
+// The aerial perspective at the pixel's eye distance and height: a pixel 100
+// units of view depth away along a ray of slope 0.75 in a plane straight
+// ahead is 125 away and 75 above the eye; with the sun along the plane
+// (sun_dot 0.6, sun Y 0.8) the ray's cosine to the sun is (0.6 + 0.75 * 0.8)
+// / 1.25 = 0.96. A sky pixel of slope 0 looks at the horizon (sine 0, cosine
+// 0.6). Both as AerialTables says.
+TEST(ShearResolve, AerialPerspectiveAtThePixel) {
+    Environment env;
+    env.atmosphere = true;
+    env.sun_dir = {0.0f, 0.8f, 0.6f};
+    FogTable fog;
+    fog.build(0.0f, 400.0f);
+    SkyTable sky;
+    sky.build(env);
+    AerialTables air;
+    air.build(aerial_frame(env, 100.0), -100.0f, 200.0f);
+    const std::vector<float> rows = {0.0f, 0.75f}, depth = {0.9f}, d = {100.0f};
+    const std::uint32_t surface = pack_rgb(Rgb8{200, 10, 30});
+    ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0, sky.entries()};
+    t.air = &air;
+    t.sun_y = 0.8f;
+    const std::uint32_t expected = air.terrain(surface, 125.0f, 75.0f, 0.96f);
+    EXPECT_NE(expected, surface);
+    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2}) {
+        if (!resolve_kernel_available(kernel)) continue;
+        Scratch s(2);
+        s.set(1, 0, surface, 0);
+        ShearBlock blk = block(1, {0}, {1.0f});
+        blk.jend[0] = 2;
+        blk.sun_dot[0] = 0.6f;
+        ColorImage color;
+        DepthImage z;
+        color.resize(1, 2);
+        z.resize(1, 2);
+        // Row 1 (bottom-up) painted from slice 0; row 0 sky when jend = 1.
+        resolve_shear_block(t, blk, 2, s.color.data(), s.slice.data(), color.pixels.data(), z.pixels.data(), 1, kernel);
+        EXPECT_EQ(color.at(0, 0), unpack_rgb(expected));
+        blk.jend[0] = 0;
+        resolve_shear_block(t, blk, 2, s.color.data(), s.slice.data(), color.pixels.data(), z.pixels.data(), 1, kernel);
+        EXPECT_EQ(color.at(0, 1), unpack_rgb(air.sky(0.0f, 0.6f)));
+        EXPECT_EQ(z.at(0, 1), 1.0f);
+    }
+}
+
 // Random blocks, full and partial: both kernels write the same bytes.
 TEST(ShearResolve, KernelsAgreeBitForBit) {
     if (!resolve_kernel_available(ResolveKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
@@ -149,7 +194,17 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
     ShearResolveTables even = read;
     even.d_first = 1.0f;
     even.d_step = 3.0f;
-    for (const ShearResolveTables& t : {read, even}) {
+    // And with the aerial perspective instead of fog and sky gradient.
+    env.atmosphere = true;
+    env.sun_dir = {0.3f, 0.2f, -0.9f};
+    AerialTables air;
+    air.build(aerial_frame(env, 50.0), -300.0f, 400.0f);
+    ShearResolveTables read_air = read, even_air = even;
+    for (ShearResolveTables* t : {&read_air, &even_air}) {
+        t->air = &air;
+        t->sun_y = 0.2f;
+    }
+    for (const ShearResolveTables& t : {read, even, read_air, even_air}) {
         for (int n : {kShearBlock, 7}) {
             std::vector<int> jend(kShearBlock, 0);
             std::vector<float> len2(kShearBlock, 1.0f);
@@ -170,7 +225,8 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
             const Rgb8 untouched{7, 7, 7};
             for (ColorImage* c : {&c1, &c2}) std::fill(c->pixels.begin(), c->pixels.end(), untouched);
             for (DepthImage* z : {&z1, &z2}) std::fill(z->pixels.begin(), z->pixels.end(), -1.0f);
-            const ShearBlock blk = block(n, jend, len2);
+            ShearBlock blk = block(n, jend, len2);
+            for (int i = 0; i < n; ++i) blk.sun_dot[i] = 2.0f * unit(rng) - 1.0f;
             resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c1.pixels.data() + 3, z1.pixels.data() + 3,
                                 std::size_t(W), ResolveKernel::Portable);
             resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c2.pixels.data() + 3, z2.pixels.data() + 3,

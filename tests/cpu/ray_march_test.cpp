@@ -76,7 +76,7 @@ TEST(RayMarcher, TiltedCameraSeesTheSameWallPoint) {
     cam.pitch = 10;
     cam.width = 64;
     cam.height = 64;
-    const RayMarcher::Frame f = RayMarcher::frame(cam);
+    const RayMarcher::Frame f = rm.frame(cam);
     const Camera::Projected p = cam.project({4.0, 2.0, 2.5}); // on the wall's front face
     Rgb8 color;
     float depth;

@@ -82,14 +82,15 @@ TEST(UntrustedRaster, SparseGeoTiffLargerThanATerrainIsRefusedBeforeReading) {
 // Needs a 512 MiB address-space limit, which an AddressSanitizer build cannot run under.
 #if OVERFLIGHT_ADDRESS_SPACE_CAN_BE_LIMITED
 TEST(UntrustedRaster, SparseGeoTiffBeyondMemoryFailsCleanly) {
-    // 3.6e9 samples need more than most machines' memory (checked before
-    // reading); 4e8 samples fit a machine but not the 512 MiB the child may
-    // use (the allocation fails and is reported).
+    // Loaded at full resolution (sim; render, bench and fly decimate it, info
+    // surveys it): 3.6e9 samples need more than most machines' memory (checked
+    // before reading); 4e8 samples fit a machine but not the 512 MiB the child
+    // may use (the allocation fails and is reported).
     for (const int side : {60000, 20000}) {
         ScratchDir dir;
         const std::string path = dir / "big.tif";
         write_sparse_geotiff(path, side, side);
-        const test::RunResult r = info_in_half_a_gib(path);
+        const test::RunResult r = run_overflight_restricted("sim '" + path + "' --steps 1", kHalfGiB);
         EXPECT_EQ(r.exit_code, 1);
         EXPECT_EQ(test::line_count(r.err), 1) << r.err;
         EXPECT_EQ(r.err.rfind("overflight: " + path + ": ", 0), 0u) << r.err;

@@ -107,6 +107,41 @@ TEST(RenderVoxelCli, LiteralNeedsShear) {
     EXPECT_EQ(r.err.rfind("overflight: --projection:", 0), 0u) << r.err;
 }
 
+// --atmosphere changes the picture of an image method and of a mesh method
+// (sky and terrain), and nothing else about the run.
+TEST(RenderCli, AtmosphereReachesEveryKindOfMethod) {
+    ScratchDir dir;
+    for (const char* method : {"voxel", "mesh"}) {
+        Png with_air, without;
+        for (bool air : {false, true}) {
+            const std::string out = dir / (std::string(method) + (air ? "_air.png" : ".png"));
+            const RunResult r = run_overflight("render demo --demo-size 65 --size 48x32 --pitch 5 --method " +
+                                               std::string(method) + " -o '" + out + "'" + (air ? " --atmosphere" : ""));
+            ASSERT_EQ(r.exit_code, 0) << r.err;
+            (air ? with_air : without) = read_png(out);
+        }
+        ASSERT_EQ(with_air.rgb.size(), without.rgb.size());
+        EXPECT_NE(with_air.rgb, without.rgb) << method;
+        // The top row is sky in both: the atmosphere's sky is another color.
+        EXPECT_NE(std::vector<unsigned char>(with_air.at(0, 0), with_air.at(0, 0) + 3),
+                  std::vector<unsigned char>(without.at(0, 0), without.at(0, 0) + 3))
+            << method;
+    }
+}
+
+// bench --atmosphere times each method without and with it in one run.
+TEST(BenchCli, AtmosphereIsTimedBesideThePlainRun) {
+    const RunResult r =
+        run_overflight("bench demo --demo-size 65 --json --size 40x24 --frames 2 --methods voxel,mesh --atmosphere");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["runs"].size(), 4u);
+    EXPECT_EQ(j["runs"][0]["method"], "voxel");
+    EXPECT_EQ(j["runs"][1]["method"], "voxel+looks");
+    EXPECT_EQ(j["runs"][3]["method"], "mesh+looks");
+    EXPECT_GT(j["runs"][1]["x_without_looks"].get<double>(), 0.0);
+}
+
 TEST(BenchCli, JsonListsVoxelAndLiteral) {
     const RunResult r =
         run_overflight("bench demo --demo-size 65 --json --size 40x24 --frames 2 --methods voxel,voxel-literal");

@@ -74,6 +74,22 @@ TEST(FlyWindow, UnattendedRunSavesAScreenshotThatIsNotBlank) {
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path), {}), 1);
 }
 
+// The demo starts with GL_EXP fog; one `f` turns the atmosphere on, which is
+// where `--atmosphere` starts: the same picture, unlike the fog's.
+TEST(FlyWindow, FogKeyReachesTheAtmosphereOfTheCommandLine) {
+    ScratchDir dir;
+    const std::string fog = dir / "fog.png", key = dir / "key.png", flag = dir / "flag.png";
+    for (const auto& [args, shot] : {std::pair<std::string, std::string>{"", fog}, {"--press fog:0-1 ", key},
+                                     {"--atmosphere ", flag}}) {
+        const auto r = run_overflight(std::string(kFly) + "--method voxel --frames 3 " + args + "--screenshot '" + shot + "'");
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    const Png a = read_png(fog), b = read_png(key), c = read_png(flag);
+    ASSERT_FALSE(a.empty() || b.empty() || c.empty());
+    EXPECT_EQ(b.rgb, c.rgb);
+    EXPECT_NE(a.rgb, c.rgb);
+}
+
 TEST(FlyWindow, TabCyclesThroughTheMethodsWithTheSameCamera) {
     const std::vector<std::string> methods = tab_cycle();
     ASSERT_EQ(methods, (std::vector<std::string>{"mesh", "voxel", "roam", "quadtree"}));
