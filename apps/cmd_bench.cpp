@@ -84,11 +84,16 @@ nlohmann::json run_row(const std::string& name, const TimedFrames& t, const Came
 std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& session, const Camera& camera,
                                          int frames, const std::function<const DepthImage*()>& full_mesh_depth,
                                          const std::vector<Environment>& envs) {
-    std::unique_ptr<TerrainMethod> method = session.create(m);
+    // One method per environment: a method keeps what it derives from the
+    // environment (the ray casters' lit colors) while it stays the same, as
+    // it does through a flight, so interleaved frames must not share one.
+    std::vector<std::unique_ptr<TerrainMethod>> methods;
+    for (std::size_t e = 0; e < envs.size(); ++e) methods.push_back(session.create(m));
+    TerrainMethod& method = *methods.front();
     RenderedView view;
-    for (const Environment& env : envs) { // warm-up: first-touch of buffers, pyramids, uploads, tables
-        session.set_environment(env);
-        session.render(m, *method, camera, false, view);
+    for (std::size_t e = 0; e < envs.size(); ++e) { // warm-up: first-touch of buffers, pyramids, uploads, tables
+        session.set_environment(envs[e]);
+        session.render(m, *methods[e], camera, false, view);
     }
     std::vector<TimedFrames> timed(envs.size());
     double spent = 0;
@@ -97,7 +102,7 @@ std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& se
             session.set_environment(envs[e]);
             TimedFrames& t = timed[e];
             const auto t0 = std::chrono::steady_clock::now();
-            session.render(m, *method, camera, false, view); // timed frames do not read the depth back
+            session.render(m, *methods[e], camera, false, view); // timed frames do not read the depth back
             t.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
             spent += t.ms.back();
             t.stats = view_stats_json(session.settings(), camera, view);
@@ -116,7 +121,7 @@ std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& se
         run["ms_tessellate_100000"] = roam["ms_tessellate_100000"];
         run["error_curve"] = roam["curve"];
     }
-    if (method->output_kind() == MethodOutputKind::Mesh)
+    if (method.output_kind() == MethodOutputKind::Mesh)
         if (const DepthImage* depth = full_mesh_depth()) add_accuracy(run, m, session, camera, *depth);
     return runs;
 }
