@@ -1,6 +1,7 @@
 // Camera options (DESIGN sec. 6) shared by `render` and `bench`. See CameraOptions.h.
 #include "CameraOptions.h"
 
+#include "OptionValues.h"
 #include "core/Error.h"
 
 #include <glm/geometric.hpp>
@@ -18,25 +19,6 @@ std::string num(double v) {
     std::ostringstream s;
     s << v;
     return s.str();
-}
-
-// "a,b[,c]" -> values; throws Error(option, ...) unless exactly `count` finite numbers.
-std::vector<double> parse_list(const std::string& text, const std::string& option, int count, const char* form) {
-    std::vector<double> v;
-    std::stringstream ss(text);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        try {
-            std::size_t used = 0;
-            const double x = std::stod(item, &used);
-            if (used != item.size() || !std::isfinite(x)) throw std::invalid_argument(item);
-            v.push_back(x);
-        } catch (const std::exception&) {
-            throw Error(option, "'" + text + "' is not " + form);
-        }
-    }
-    if (int(v.size()) != count) throw Error(option, "'" + text + "' is not " + form);
-    return v;
 }
 
 double terrain_extent(const Terrain& t) { return std::max(t.width(), t.depth()); }

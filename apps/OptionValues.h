@@ -14,6 +14,7 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace overflight::app {
 
@@ -35,6 +36,10 @@ CLI::Validator decimal() {
         },
         "");
 }
+
+// "a,b[,c]" -> values; throws Error(option, "'TEXT' is not FORM") unless
+// exactly `count` finite numbers separated by commas.
+std::vector<double> parse_list(const std::string& text, const std::string& option, int count, const char* form);
 
 // Throws Error(name, "empty file name") for each of `names` (as given to
 // add_option, e.g. "-o") that the command line gave with an empty value:

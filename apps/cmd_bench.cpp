@@ -12,6 +12,8 @@
 #include "RoamBench.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
+#include "core/HorizonSweep.h"
+#include "core/SunLight.h"
 #include "io/TileDirectory.h"
 #include "lod/QuadtreeAccuracy.h"
 
@@ -82,11 +84,16 @@ nlohmann::json run_row(const std::string& name, const TimedFrames& t, const Came
 std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& session, const Camera& camera,
                                          int frames, const std::function<const DepthImage*()>& full_mesh_depth,
                                          const std::vector<Environment>& envs) {
-    std::unique_ptr<TerrainMethod> method = session.create(m);
+    // One method per environment: a method keeps what it derives from the
+    // environment (the ray casters' lit colors) while it stays the same, as
+    // it does through a flight, so interleaved frames must not share one.
+    std::vector<std::unique_ptr<TerrainMethod>> methods;
+    for (std::size_t e = 0; e < envs.size(); ++e) methods.push_back(session.create(m));
+    TerrainMethod& method = *methods.front();
     RenderedView view;
-    for (const Environment& env : envs) { // warm-up: first-touch of buffers, pyramids, uploads, tables
-        session.set_environment(env);
-        session.render(m, *method, camera, false, view);
+    for (std::size_t e = 0; e < envs.size(); ++e) { // warm-up: first-touch of buffers, pyramids, uploads, tables
+        session.set_environment(envs[e]);
+        session.render(m, *methods[e], camera, false, view);
     }
     std::vector<TimedFrames> timed(envs.size());
     double spent = 0;
@@ -95,7 +102,7 @@ std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& se
             session.set_environment(envs[e]);
             TimedFrames& t = timed[e];
             const auto t0 = std::chrono::steady_clock::now();
-            session.render(m, *method, camera, false, view); // timed frames do not read the depth back
+            session.render(m, *methods[e], camera, false, view); // timed frames do not read the depth back
             t.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
             spent += t.ms.back();
             t.stats = view_stats_json(session.settings(), camera, view);
@@ -114,9 +121,30 @@ std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& se
         run["ms_tessellate_100000"] = roam["ms_tessellate_100000"];
         run["error_curve"] = roam["curve"];
     }
-    if (method->output_kind() == MethodOutputKind::Mesh)
+    if (method.output_kind() == MethodOutputKind::Mesh)
         if (const DepthImage* depth = full_mesh_depth()) add_accuracy(run, m, session, camera, *depth);
     return runs;
+}
+
+// The sun's cost, measured in the same run as the methods: the horizon sweep
+// and the relighting of every sample for new sun directions (a moving sun,
+// as the time-of-day keys of `fly` move it), medians over a day's arc.
+nlohmann::json bench_sun(const Terrain& t, const Environment& env) {
+    std::vector<double> sweep, light;
+    ShadowCeiling ceiling;
+    std::vector<Rgb8> colors;
+    Environment e = env;
+    e.shadows = true;
+    for (double hour = 7.0; hour <= 17.0; hour += 1.25) {
+        e.sun_dir = sun_at_hour(hour);
+        auto t0 = std::chrono::steady_clock::now();
+        sweep_shadow_ceiling(t, e.sun_dir, ceiling);
+        sweep.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        t0 = std::chrono::steady_clock::now();
+        light_colors(t, e, &ceiling, colors);
+        light.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return {{"sun_directions", int(sweep.size())}, {"ms_shadow_sweep", median(sweep)}, {"ms_light", median(light)}};
 }
 
 // Zamri's figures for a LOD mesh against full resolution (the terrain in
@@ -180,6 +208,15 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
         if (r.contains("x_without_looks"))
             std::printf("%s / without = %.3fx\n", r["method"].get<std::string>().c_str(),
                         r["x_without_looks"].get<double>());
+    if (out.contains("sun")) {
+        const nlohmann::json& s = out["sun"];
+        std::printf("\nSun: lighting %s, shadows %s, sun azimuth %.1f elevation %.1f\n\n",
+                    out["look"]["lighting"].get<std::string>().c_str(), out["look"]["shadows"].get<bool>() ? "on" : "off",
+                    out["look"]["sun_azimuth"].get<double>(), out["look"]["sun_elevation"].get<double>());
+        std::printf("| step for a new sun direction (median of %d) | ms |\n|---|---:|\n| horizon sweep (shadow ceiling) | %.2f "
+                    "|\n| light of every sample | %.2f |\n",
+                    s["sun_directions"].get<int>(), s["ms_shadow_sweep"].get<double>(), s["ms_light"].get<double>());
+    }
     const nlohmann::json* with = find_run(runs, "voxel+objects");
     const nlohmann::json* without = find_run(runs, "voxel+present");
     if (with || without) {
@@ -306,6 +343,7 @@ void add_bench_command(CLI::App& app) {
         const bool lazy = tiles && std::all_of(methods.begin(), methods.end(),
                                                [](const MethodEntry* m) { return m->reads_tiles; });
         const DataSet data = lazy ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
+        const Environment looked = with_looks(args->looks, data.environment); // bad values fail before the work
         CameraArgs cam_args = args->camera;
         if (!cam_args.far) cam_args.far = 2048.0 * data.terrain.h_scale(); // "far 2048 samples"
         const Camera camera = make_camera(cam_args, data, 1920, 1080);
@@ -327,19 +365,29 @@ void add_bench_command(CLI::App& app) {
             return &*mesh_depth;
         };
         // With looks, each method is timed as the data set is and with them,
-        // in this run: their cost is the ratio of the two rows.
-        std::vector<Environment> envs{data.environment};
-        if (args->looks.any()) envs.push_back(with_looks(args->looks, data.environment));
+        // in this run: their cost is the ratio of the two rows. With
+        // --shadows the rows without are the papers' baked look, so that the
+        // ratio is the cost of the sun's light and shadows together.
+        Environment without = data.environment;
+        if (args->looks.shadows) bake_lighting(without);
+        std::vector<Environment> envs{without};
+        if (args->looks.any()) envs.push_back(looked);
         for (const MethodEntry* m : methods)
             for (nlohmann::json& run : bench_method(*m, session, camera, args->frames, full_mesh_depth, envs))
                 runs.push_back(std::move(run));
-        const nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},
+        nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},
                                     {"rows", data.terrain.rows()},
                                     {"cols", data.terrain.cols()},
                                     {"threads", args->threads > 0 ? args->threads : tbb::info::default_concurrency()},
                                     {"far", camera.far},
                                     {"projection", to_string(camera.projection)},
                                     {"runs", runs}};
+        const SunAngles sun = sun_angles(looked.sun_dir);
+        out["look"] = {{"lighting", lighting_is_baked(looked) ? "baked" : "sun"},
+                       {"shadows", looked.shadows},
+                       {"sun_azimuth", sun.azimuth},
+                       {"sun_elevation", sun.elevation}};
+        if (looked.shadows) out["sun"] = bench_sun(data.terrain, looked);
         if (args->json) {
             const std::string text = out.dump() + "\n";
             std::fwrite(text.data(), 1, text.size(), stdout);

@@ -20,6 +20,7 @@
 #include "RenderSession.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
+#include "core/SunLight.h"
 #include "gl/FlightWindow.h"
 #include "io/Files.h"
 #include "io/FlightRecordFile.h"
@@ -167,6 +168,9 @@ void run_fly(const FlyOptions& o) {
             return tile_directory_tiles(dir, bound);
         };
     if (!o.replay.empty()) return run_replay(o, data, methods);
+    // `--lighting baked` is where the `1` key starts.
+    const bool lit = !lighting_is_baked(data.environment);
+    data.environment.baked = false;
 
     gl::FlightWindowOptions wo;
     parse_size(o.size, wo.width, wo.height);
@@ -175,6 +179,7 @@ void run_fly(const FlyOptions& o) {
     wo.session.frames = o.frames;
     wo.session.script = KeyScript(std::move(presses));
     wo.session.hud = !o.no_hud;
+    wo.session.lighting = lit;
     wo.session.start = data.start;
     wo.visible = !o.hidden;
     const std::filesystem::path shot_base = o.screenshot.empty() ? std::filesystem::path("overflight.png")
@@ -218,7 +223,7 @@ void add_fly_command(CLI::App& app) {
         ->transform(decimal<long long>());
     sub->add_option("--press", o->presses, "KEY:FROM-TO holds KEY during frames FROM..TO-1 (keys: accelerate, brake, "
                                            "left, right, fog, lighting, wireframe, detail-up, detail-down, "
-                                           "next-method, screenshot, hud, quit)")
+                                           "next-method, screenshot, hud, quit, shadows, sun-later, sun-earlier)")
         ->take_all();
     sub->add_option("--screenshot", o->screenshot, "With --frames: save the last frame as PNG");
     sub->add_option("--size", o->size, "Window / replay size WxH");

@@ -1,5 +1,6 @@
 // `overflight render TERRAIN -o out.png [--method M] [camera options] [--scene FILE]
-//                   [--depth depth.tif] [--stats] [--triangles N] [--error PX]`
+//                   [--depth depth.tif] [--stats] [--triangles N] [--error PX]
+//                   [--lighting sun|baked] [--sun AZ,EL] [--shadows]`
 // (DESIGN sec. 6): one view of a terrain, written as PNG (+ float32 window
 // depth TIFF), with timings and counts as one JSON object on stdout.
 #include "CameraOptions.h"
@@ -55,7 +56,7 @@ void add_render_command(CLI::App& app) {
         if (!row) throw Error("--method", "unknown method '" + args->method + "' (known: " + terrain_method_names() + ")");
         auto t0 = std::chrono::steady_clock::now();
         const bool tiles = is_tile_directory(args->terrain.terrain);
-        const DataSet data = row->reads_tiles ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
+        DataSet data = row->reads_tiles ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
         const double ms_load = ms_since(t0);
         const Camera camera = make_camera(args->camera, data, 1280, 720);
         RenderSession session(data, args->methods, tiles ? args->terrain.terrain : std::string());

@@ -32,6 +32,8 @@ struct Environment {
     glm::vec3 sun_dir{0.3f, 0.8f, 0.5f};   // towards the sun, world space (normalised on use)
     glm::vec3 sun_color{1.0f, 0.96f, 0.9f};
     glm::vec3 ambient{0.35f, 0.38f, 0.45f};
+    bool shadows = false;                  // the terrain casts shadows for sun_dir (core/HorizonSweep.h)
+    bool baked = false;                    // the terrain's colors shown as they are, no sun on them (objects stay lit)
     float fog_density = 0.0f;              // GL_EXP fog: f = exp(-density * distance)
     glm::vec3 fog_color{0.72f, 0.80f, 0.90f};
     glm::vec3 sky_zenith{0.30f, 0.50f, 0.85f};

@@ -4,6 +4,8 @@
 
 #include "core/Error.h"
 
+#include <glm/geometric.hpp>
+
 #include <chrono>
 
 namespace overflight::gl {
@@ -43,10 +45,27 @@ void Compositor::prepare(ResidentSurface surface) {
     }
 }
 
-void Compositor::begin(const Camera& camera, const Environment& environment, const RenderTarget& target) {
+glm::vec4 Compositor::terrain_shadow(const Environment& environment, StepTimer& timer) {
+    const glm::vec3 sun = glm::length(environment.sun_dir) > 0 ? glm::normalize(environment.sun_dir) : glm::vec3(0, 1, 0);
+    // A sun at or below the horizon lights nothing (shade()): nothing to sweep.
+    if (!environment.shadows || !(sun.y > 0)) return glm::vec4(0.0f);
+    if (!shadow_valid_ || shadow_.sun_dir != sun) {
+        const auto t0 = std::chrono::steady_clock::now();
+        sweep_shadow_ceiling(terrain_, sun, shadow_);
+        shadow_texture_.upload(shadow_, terrain_);
+        shadow_valid_ = true;
+        timer.cpu_step_since("shadow_sweep", t0);
+    }
+    shadow_texture_.bind();
+    return shadow_texture_.uniform();
+}
+
+void Compositor::begin(const Camera& camera, const Environment& environment, const RenderTarget& target,
+                       StepTimer& timer) {
     camera.validate();
     if (camera.width != target.width() || camera.height != target.height())
         throw Error("camera", "image size differs from the render target");
+    frame_.set_shadow(terrain_shadow(environment, timer));
     frame_.update(camera, environment, terrain_);
     frame_.bind();
     target.bind();
@@ -56,7 +75,7 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
 CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, const Environment& environment,
                                  RenderTarget& target, StepTimer& timer, const CompositeOptions& options) {
     if (out.kind == MethodOutputKind::Resident) prepare(out.surface); // uploads are not part of a frame
-    begin(camera, environment, target);
+    begin(camera, environment, target, timer);
     CompositeCounts counts;
     if (out.kind == MethodOutputKind::Images) {
         draw_images(out, camera, target, timer, options);
@@ -68,7 +87,9 @@ CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, 
         sky_.draw();
         timer.end_gl();
         if (options.wireframe) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        frame_.set_terrain_pass(true, environment.baked);
         counts.terrain_primitives = draw_surface(out, camera, timer, counts);
+        frame_.set_terrain_pass(false, false);
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     }
 

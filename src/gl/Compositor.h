@@ -18,11 +18,18 @@
 //             (outside any timed step) and drawn ("terrain").
 // Then "objects": the scene's objects and the vehicle, depth-tested.
 //
+// With Environment::shadows the terrain's shadow ceiling for the sun
+// (core/HorizonSweep.h) is swept when the sun moves ("shadow_sweep") and
+// uploaded as a texture, so that the mesh methods' terrain and every
+// method's objects receive the terrain's cast shadows in shade(). Objects
+// cast none onto the terrain.
+//
 // Fog used by every program (the ray caster matches it, raycast/Atmosphere.h):
 //     f = exp(-fog_density * d),  d = |P - eye| (eye-space distance),
-//     color = mix(fog_color, lit, f),  lit = albedo * (ambient + sun_color * max(N.sun_dir, 0));
+//     color = mix(fog_color, lit, f),  lit = albedo * (ambient + sun_color * max(N.sun_dir, 0) * visible),
+// visible = 0 below the terrain's shadow ceiling (with shadows on), else 1;
 // with Environment::atmosphere, the aerial perspective and sky of
-// core/AerialPerspective.h instead (GLSL aerial(), air_sky()).
+// core/AerialPerspective.h instead of the fog (GLSL aerial(), air_sky()).
 //
 // Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of
 // a Terrain with Objects" (SIBGRAPI 1997), sec. 3, 5 and 7 (Tables 1 and 2);
@@ -34,6 +41,7 @@
 #include "gl/FrameUniforms.h"
 #include "gl/ObjectRenderer.h"
 #include "gl/RenderTarget.h"
+#include "gl/ShadowCeilingTexture.h"
 #include "gl/SkyPass.h"
 #include "gl/StepTimer.h"
 #include "gl/StreamedMesh.h"
@@ -80,13 +88,18 @@ public:
     const ObjectRenderer& objects() const { return objects_; }
 
 private:
-    void begin(const Camera& camera, const Environment& environment, const RenderTarget& target);
+    void begin(const Camera& camera, const Environment& environment, const RenderTarget& target, StepTimer& timer);
+    // The shadow vector of the frame block for `environment` (sweeps and uploads when the sun moved).
+    glm::vec4 terrain_shadow(const Environment& environment, StepTimer& timer);
     void draw_images(const MethodOutput& out, const Camera& camera, RenderTarget& target, StepTimer& timer,
                      const CompositeOptions& options);
     long long draw_surface(const MethodOutput& out, const Camera& camera, StepTimer& timer, CompositeCounts& counts);
 
     const Terrain& terrain_;
     FrameUniforms frame_;
+    ShadowCeiling shadow_;
+    bool shadow_valid_ = false;
+    ShadowCeilingTexture shadow_texture_;
     SkyPass sky_;
     ObjectRenderer objects_;
     FlightVehicle vehicle_;

@@ -27,8 +27,10 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::optional<Key> key_of(int glfw_key) {
+std::optional<Key> key_of(int glfw_key, int mods) {
     switch (glfw_key) {
+    case GLFW_KEY_S: return Key::Shadows;
+    case GLFW_KEY_T: return (mods & GLFW_MOD_SHIFT) ? Key::SunEarlier : Key::SunLater;
     case GLFW_KEY_UP: return Key::Accelerate;
     case GLFW_KEY_DOWN: return Key::Brake;
     case GLFW_KEY_LEFT: return Key::Left;
@@ -50,10 +52,10 @@ std::optional<Key> key_of(int glfw_key) {
     }
 }
 
-void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
     auto* session = static_cast<FlightSession*>(glfwGetWindowUserPointer(window));
     if (!session || action == GLFW_REPEAT) return; // key repeat is ignored (sec. 3.1)
-    const std::optional<Key> k = key_of(key);
+    const std::optional<Key> k = key_of(key, mods);
     if (!k) return;
     if (action == GLFW_PRESS) session->press(*k);
     else session->release(*k);
@@ -203,7 +205,7 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
             hud.draw(HudInfo{fps, frame_ms, session.ms_per_physics_step(), latest_steps, counts.terrain_primitives,
                              counts.object_triangles, methods.name(current), methods.get(current).detail(),
                              glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, to_string(t.fog), t.lighting,
-                             t.wireframe});
+                             t.wireframe, t.shadows, session.environment().sun_dir});
             window.swap_buffers();
         }
         session.end_frame();

@@ -8,6 +8,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <cmath>
+#include <cstddef>
 
 namespace overflight::gl {
 
@@ -44,6 +45,13 @@ void FrameUniforms::update(const Camera& camera, const Environment& env, const T
         block_.air_beta = block_.air_rayleigh = block_.air_haze = glm::vec4(0.0f);
     }
     glNamedBufferSubData(ubo_.get(), 0, sizeof(FrameBlock), &block_);
+}
+
+void FrameUniforms::set_terrain_pass(bool terrain, bool baked) {
+    const glm::vec4 look(terrain && baked ? 1.0f : 0.0f, terrain ? 1.0f : 0.0f, 0.0f, 0.0f);
+    if (block_.look == look) return;
+    block_.look = look;
+    glNamedBufferSubData(ubo_.get(), GLintptr(offsetof(FrameBlock, look)), sizeof(glm::vec4), &block_.look);
 }
 
 void FrameUniforms::bind() const { glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo_.get()); }

@@ -21,6 +21,8 @@ struct FrameBlock {
     glm::vec4 eye, sun_dir, sun_color, ambient, fog, sky_zenith, sky_horizon;
     glm::vec4 view_axis, view_right, view_up, image, grid;
     glm::vec4 air_beta, air_rayleigh, air_haze;
+    glm::vec4 shadow; // ShadowCeilingTexture::uniform(), or 0: no terrain shadows
+    glm::vec4 look;   // x: 1 while baked surfaces are drawn, y: 1 while the terrain is (set_terrain_pass)
 };
 
 class FrameUniforms {
@@ -30,6 +32,10 @@ public:
     // projection_matrix() * view_matrix() * translate(eye) and rounded once to
     // float; shaders transform (world - eye) with it (clip_of() in kFrameGlsl).
     void update(const Camera& camera, const Environment& env, const Terrain& terrain);
+    // The terrain shadows of the next update()s (ShadowCeilingTexture::uniform(), 0 = none).
+    void set_shadow(const glm::vec4& shadow) { block_.shadow = shadow; }
+    // Whether what is drawn next is the terrain, and baked (no sun on it): updates the block.
+    void set_terrain_pass(bool terrain, bool baked);
     // Binds the block to uniform binding 0.
     void bind() const;
     const FrameBlock& block() const { return block_; }

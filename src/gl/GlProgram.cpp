@@ -46,7 +46,12 @@ layout(std140, binding = 0) uniform Frame {
     vec4 air_beta;     // rgb = beta_c rho0 (extinction at the eye's height), a = scale height H
     vec4 air_rayleigh; // rgb = R_c, a = haze asymmetry g
     vec4 air_haze;     // rgb = M_c, a = 1 when the atmosphere replaces the fog and sky gradient
+    vec4 shadow;       // x: 1 = the terrain casts shadows; y: texels per world unit
+    vec4 look;         // x: 1 = what is drawn now is baked (the terrain's colors with --lighting baked): no sun;
+                       // y: 1 = what is drawn now is the terrain
 };
+// The terrain's shadow ceiling (core/HorizonSweep.h), one texel per sample.
+layout(binding = 7) uniform sampler2D shadow_ceiling;
 
 vec4 clip_of(vec3 world) { return view_proj * vec4(world - eye.xyz, 1.0); }
 
@@ -81,9 +86,33 @@ vec3 fogged(vec3 color, vec3 world) {
     if (air_haze.a > 0.0) return aerial(color, world);
     return mix(fog.rgb, color, exp(-fog.a * length(world - eye.xyz)));
 }
-// Lambert sun + ambient (hovercraft sun lighting), then fogged().
+// How much of the sun `world` sees past the terrain. Each of the four
+// samples around it tests the point's height above the ground against its
+// ceiling's (texel: r = ceiling - sample height, g = sample height; a terrain
+// fragment is on the ground), and the tests are interpolated bilinearly
+// (percentage-closer filtering: Reeves, Salesin, Cook, "Rendering Antialiased
+// Shadows with Depth Maps", SIGGRAPH 1987): a terrain fragment's shadow ends
+// halfway between a shadowed and a lit sample, where the ray caster's blocks
+// end it, and a sample's ceiling is never compared with a point below it.
+float sun_visible(vec3 world) {
+    if (shadow.x == 0.0) return 1.0;
+    vec2 p = world.xz * shadow.y;
+    ivec2 i = ivec2(floor(p));
+    vec2 f = p - vec2(i);
+    ivec2 last = textureSize(shadow_ceiling, 0) - 1;
+    ivec2 i0 = clamp(i, ivec2(0), last), i1 = clamp(i + 1, ivec2(0), last);
+    vec2 t00 = texelFetch(shadow_ceiling, i0, 0).rg, t10 = texelFetch(shadow_ceiling, ivec2(i1.x, i0.y), 0).rg;
+    vec2 t01 = texelFetch(shadow_ceiling, ivec2(i0.x, i1.y), 0).rg, t11 = texelFetch(shadow_ceiling, i1, 0).rg;
+    float ground = mix(mix(t00.g, t10.g, f.x), mix(t01.g, t11.g, f.x), f.y);
+    float above = look.y > 0.0 ? 0.0 : world.y - ground;
+    return mix(mix(step(t00.r, above), step(t10.r, above), f.x), mix(step(t01.r, above), step(t11.r, above), f.x), f.y);
+}
+// Lambert sun + ambient (hovercraft sun lighting; core/SunLight.h is the same
+// per sample: no sun at or below the horizon, none in the terrain's shadow),
+// then fogged().
 vec3 shade(vec3 albedo, vec3 n, vec3 world) {
-    float lambert = max(dot(normalize(n), sun_dir.xyz), 0.0);
+    if (look.x > 0.0) return fogged(albedo, world);
+    float lambert = sun_dir.y > 0.0 ? max(dot(normalize(n), sun_dir.xyz), 0.0) * sun_visible(world) : 0.0;
     vec3 lit = albedo * (ambient.rgb + sun_color.rgb * lambert);
     return fogged(lit, world);
 }

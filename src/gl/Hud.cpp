@@ -1,5 +1,7 @@
 #include "gl/Hud.h"
 
+#include "core/SunLight.h"
+
 #include <epoxy/gl.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -45,9 +47,12 @@ void Hud::draw(const HudInfo& info) {
         ImGui::Text("triangles %lld  objects %lld", info.triangles, info.object_triangles);
         ImGui::Text("position %.1f, %.1f, %.1f", info.position.x, info.position.y, info.position.z);
         ImGui::Text("speed %.2f m/s  heading %.1f", info.speed, info.heading);
-        ImGui::Text("fog %s  light %s  wire %s", info.fog, info.lighting ? "on" : "off",
-                    info.wireframe ? "on" : "off");
-        ImGui::TextDisabled("arrows fly  f 1 W  + _  Tab P H q");
+        ImGui::Text("fog %s  light %s  shadows %s  wire %s", info.fog, info.lighting ? "sun" : "baked",
+                    info.shadows ? "on" : "off", info.wireframe ? "on" : "off");
+        const SunAngles sun = sun_angles(info.sun_dir);
+        ImGui::Text("sun azimuth %.0f  elevation %.0f%s", sun.azimuth, sun.elevation,
+                    sun.elevation <= 0 ? " (night)" : "");
+        ImGui::TextDisabled("arrows fly  f 1 s t T W  + _  Tab P H q");
         ImGui::End();
     }
     ImGui::Render();

@@ -29,6 +29,8 @@ struct HudInfo {
     double heading = 0;         // degrees
     const char* fog = "off";    // the fog mode: off, GL_EXP, atmosphere
     bool lighting = true, wireframe = false;
+    bool shadows = false;
+    glm::vec3 sun_dir{0.0f, 1.0f, 0.0f}; // towards the sun
 };
 
 class Hud {

@@ -4,6 +4,7 @@
 // Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of
 // a Terrain with Objects" (SIBGRAPI 1997), sec. 4 (the plain ray casting the
 // Floating Horizon speeds up); DESIGN sec. 8 (reference implementations).
+#include "core/SunLight.h"
 #include "methods/MethodTable.h"
 #include "raycast/RayMarcher.h"
 
@@ -15,12 +16,14 @@ namespace {
 
 class RayMarchMethod final : public TerrainMethod {
 public:
-    explicit RayMarchMethod(const MethodContext& c) : marcher_(c.terrain, env_), surface_(c.settings.raycast.surface) {}
+    explicit RayMarchMethod(const MethodContext& c)
+        : marcher_(c.terrain, env_), lighting_(c.terrain), surface_(c.settings.raycast.surface) {}
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
         env_ = view.environment;
         const auto t0 = std::chrono::steady_clock::now();
+        marcher_.set_colors(lighting_.colors(env_));
         marcher_.render(view.camera, surface_, color_, depth_);
         stats.add_step_since("raymarch", t0);
         stats.rays = (long long)view.camera.width * view.camera.height;
@@ -30,6 +33,7 @@ public:
 private:
     Environment env_; // before marcher_, which reads it every frame
     RayMarcher marcher_;
+    TerrainLighting lighting_;
     SurfaceModel surface_;
     ColorImage color_;
     DepthImage depth_;

@@ -4,8 +4,11 @@
 // Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization of
 // a Terrain with Objects" (SIBGRAPI 1997), sec. 4, Algorithm 1.
 #include "core/Error.h"
+#include "core/SunLight.h"
 #include "methods/MethodTable.h"
 #include "raycast/FloatingHorizonLiteral.h"
+
+#include <chrono>
 
 namespace overflight {
 
@@ -13,14 +16,20 @@ namespace {
 
 class VoxelLiteralMethod final : public TerrainMethod {
 public:
-    explicit VoxelLiteralMethod(const MethodContext& c) : terrain_(c.terrain), options_(c.settings.raycast) {
+    explicit VoxelLiteralMethod(const MethodContext& c)
+        : terrain_(c.terrain), lighting_(c.terrain), options_(c.settings.raycast) {
         if (options_.lod) throw Error("distance LOD", "voxel-literal has none (it is Algorithm 1 as printed)");
     }
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::uint64_t before = lighting_.version();
+        const std::vector<Rgb8>* colors = lighting_.colors(view.environment);
+        if (lighting_.version() != before) stats.add_step_since("light", t0);
         RaycastStats s;
-        render_floating_horizon_literal(terrain_, view.environment, view.camera, options_.surface, color_, depth_, &s);
+        render_floating_horizon_literal(terrain_, view.environment, view.camera, options_.surface, color_, depth_, &s,
+                                        colors);
         stats.steps.push_back({"raycast", s.ms_total});
         stats.raycast = s;
         return MethodOutput::images(color_, depth_);
@@ -28,6 +37,7 @@ public:
 
 private:
     const Terrain& terrain_;
+    TerrainLighting lighting_;
     RaycastOptions options_;
     ColorImage color_;
     DepthImage depth_;

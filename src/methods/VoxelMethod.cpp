@@ -5,8 +5,11 @@
 // a Terrain with Objects" (SIBGRAPI 1997), sec. 4-6 (Algorithm 1, exact conic
 // projection, depth vector); Guedes, "Integrating Polygonal Objects on Voxel
 // Based Terrain Models" (pitched view planes).
+#include "core/SunLight.h"
 #include "methods/MethodTable.h"
 #include "raycast/FloatingHorizon.h"
+
+#include <chrono>
 
 namespace overflight {
 
@@ -14,10 +17,18 @@ namespace {
 
 class VoxelMethod final : public TerrainMethod {
 public:
-    explicit VoxelMethod(const MethodContext& c) : caster_(c.terrain), options_(c.settings.raycast) {}
+    explicit VoxelMethod(const MethodContext& c)
+        : caster_(c.terrain), lighting_(c.terrain), options_(c.settings.raycast) {}
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::vector<Rgb8>* colors = lighting_.colors(view.environment);
+        if (lighting_.version() != painted_) {
+            caster_.set_colors(colors);
+            painted_ = lighting_.version();
+            stats.add_step_since("light", t0);
+        }
         RaycastStats s;
         caster_.render(view.camera, view.environment, options_, color_, depth_, &s);
         stats.steps.push_back({"raycast", s.ms_total});
@@ -27,6 +38,8 @@ public:
 
 private:
     FloatingHorizon caster_;
+    TerrainLighting lighting_;
+    std::uint64_t painted_ = 0; // the lighting's version the caster paints
     RaycastOptions options_;
     ColorImage color_;
     DepthImage depth_;

@@ -11,6 +11,8 @@ FloatingHorizon::FloatingHorizon(const Terrain& terrain) : state_(std::make_uniq
 
 FloatingHorizon::~FloatingHorizon() = default;
 
+void FloatingHorizon::set_colors(const std::vector<Rgb8>* colors) { state_->terrain.set_colors(colors); }
+
 void FloatingHorizon::render(const Camera& camera, const Environment& env, const RaycastOptions& options,
                              ColorImage& color, DepthImage& depth, RaycastStats* stats) {
     const auto t0 = Clock::now();

@@ -45,6 +45,7 @@
 #include "raycast/RaycastOptions.h"
 
 #include <memory>
+#include <vector>
 
 namespace overflight {
 
@@ -73,6 +74,12 @@ public:
     // down for vertical planes go to the ray marcher (stats->fallback_pixels).
     void render(const Camera& camera, const Environment& env, const RaycastOptions& options, ColorImage& color,
                 DepthImage& depth, RaycastStats* stats = nullptr);
+
+    // Paints `colors` (one per sample, e.g. sun-lit: core/SunLight.h; they
+    // must outlive their use) from the next render on instead of the
+    // terrain's own colors; null: the terrain's. Repacks them (linear in the
+    // samples), so call it only when they change.
+    void set_colors(const std::vector<Rgb8>* colors);
 
 private:
     std::unique_ptr<FloatingHorizonState> state_;

@@ -5,20 +5,32 @@
 
 #include "raycast/FloatingHorizon.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace overflight {
 
 CastTerrain::CastTerrain(const Terrain& t)
-    : terrain(t), max_height(t.max_height()), min_height(t.min_height()), max_pyramid(t, kRunLevels, false) {
-    colors.resize(t.colors().size());
-    for (std::size_t i = 0; i < colors.size(); ++i) colors[i] = pack_rgb(t.colors()[i]);
+    : terrain(t), max_height(t.max_height()), min_height(t.min_height()), max_pyramid(t, kRunLevels) {
+    set_colors(nullptr);
     level_heights[0] = t.heights().data();
-    level_colors[0] = colors.data();
     level_cols[0] = t.cols();
+}
+
+void CastTerrain::set_colors(const std::vector<Rgb8>* sample_colors) {
+    source_colors = sample_colors;
+    const std::vector<Rgb8>& from = sample_colors ? *sample_colors : terrain.colors();
+    colors.resize(from.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 1 << 16), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) colors[i] = pack_rgb(from[i]);
+    });
+    level_colors[0] = colors.data();
+    lod_pyramid.reset();
 }
 
 int CastTerrain::lod_levels() {
     if (!lod_pyramid) {
-        lod_pyramid = std::make_unique<HeightPyramid>(terrain, 12);
+        lod_pyramid = std::make_unique<HeightPyramid>(terrain, 12, colors.data());
         for (int L = 1; L <= std::min(lod_pyramid->levels(), kMaxLevels - 1); ++L) {
             level_heights[L] = lod_pyramid->level(L).heights.data();
             level_colors[L] = lod_pyramid->level(L).colors.data();

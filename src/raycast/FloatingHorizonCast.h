@@ -41,10 +41,14 @@ struct CastTerrain {
     explicit CastTerrain(const Terrain& terrain);
     // Builds the LOD pyramid if needed; returns its deepest level (<= 31).
     int lod_levels();
+    // Paints `sample_colors` (one per sample, e.g. sun-lit; null: the
+    // terrain's own) from now on: repacks level 0, drops the LOD pyramid.
+    void set_colors(const std::vector<Rgb8>* sample_colors);
 
     const Terrain& terrain;
     float max_height = 0; // world, over all samples
     float min_height = 0; // world, over all samples (the aerial perspective's height range)
+    const std::vector<Rgb8>* source_colors = nullptr; // what `colors` packs; null: terrain.colors()
     std::vector<std::uint32_t> colors;
     HeightPyramid max_pyramid; // heights only: run skipping
     std::unique_ptr<HeightPyramid> lod_pyramid;

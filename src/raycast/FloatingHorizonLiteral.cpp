@@ -15,7 +15,8 @@
 namespace overflight {
 
 void render_floating_horizon_literal(const Terrain& terrain, const Environment& env, const Camera& camera,
-                                     SurfaceModel surface, ColorImage& color, DepthImage& depth, RaycastStats* stats) {
+                                     SurfaceModel surface, ColorImage& color, DepthImage& depth, RaycastStats* stats,
+                                     const std::vector<Rgb8>* colors) {
     const auto t0 = std::chrono::steady_clock::now();
     camera.validate();
     if (camera.projection != Projection::Shear)
@@ -55,7 +56,7 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
                                                                  : terrain.height_bilinear(float(x), float(y)); // line 7
                 if (h > z) { // line 8
                     const int ci = std::lround(y / hs), cj = std::lround(x / hs);
-                    const Rgb8 c = terrain.color(ci, cj); // line 9
+                    const Rgb8 c = colors ? (*colors)[terrain.index(ci, cj)] : terrain.color(ci, cj); // line 9
                     do {
                         const int row = H - 1 - j;
                         // Fog at the eye distance of this pixel's ray at this slice.

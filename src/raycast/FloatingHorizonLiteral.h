@@ -20,11 +20,15 @@
 #include "core/Terrain.h"
 #include "raycast/RaycastOptions.h"
 
+#include <vector>
+
 namespace overflight {
 
 // Throws Error("projection", ...) for a tilt camera, Error("camera", ...) for a bad one.
+// `colors` (one per sample, e.g. sun-lit: core/SunLight.h) are painted
+// instead of the terrain's own when given.
 void render_floating_horizon_literal(const Terrain& terrain, const Environment& env, const Camera& camera,
                                      SurfaceModel surface, ColorImage& color, DepthImage& depth,
-                                     RaycastStats* stats = nullptr);
+                                     RaycastStats* stats = nullptr, const std::vector<Rgb8>* colors = nullptr);
 
 } // namespace overflight

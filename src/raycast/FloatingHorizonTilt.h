@@ -46,7 +46,8 @@ void resolve_tilt(const FloatingHorizonState& s, const Camera& camera, const Env
     const double p = glm::radians(camera.pitch), sp = std::sin(p), cp = std::cos(p);
     const double fs = glm::dot(camera.view_axis(), s.sun), us = glm::dot(camera.view_up(), s.sun);
     const double rs = glm::dot(camera.right(), s.sun);
-    const RayMarcher marcher(s.terrain.terrain, env);
+    RayMarcher marcher(s.terrain.terrain, env);
+    marcher.set_colors(s.terrain.source_colors);
     const RayMarcher::Frame mf = marcher.frame(camera);
     std::atomic<long long> painted{0};
     std::atomic<int> fallback{0};

@@ -1,17 +1,16 @@
 // Based on: max-mipmaps for height-field ray casting. See HeightPyramid.h.
 #include "raycast/HeightPyramid.h"
 
-#include "raycast/Atmosphere.h"
-
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 
 namespace overflight {
 
-HeightPyramid::HeightPyramid(const Terrain& terrain, int max_level, bool with_colors)
+HeightPyramid::HeightPyramid(const Terrain& terrain, int max_level, const std::uint32_t* colors0)
     : rows_(terrain.rows()), cols_(terrain.cols()) {
     int rows = terrain.rows(), cols = terrain.cols();
+    const bool with_colors = colors0 != nullptr;
     for (int L = 1; L <= max_level && (rows > 1 || cols > 1); ++L) {
         Level next;
         next.rows = (rows + 1) / 2;
@@ -23,7 +22,7 @@ HeightPyramid::HeightPyramid(const Terrain& terrain, int max_level, bool with_co
             return prev ? prev->heights[std::size_t(i) * std::size_t(cols) + std::size_t(j)] : terrain.raw(i, j);
         };
         auto color = [&](int i, int j) -> std::uint32_t {
-            return prev ? prev->colors[std::size_t(i) * std::size_t(cols) + std::size_t(j)] : pack_rgb(terrain.color(i, j));
+            return prev ? prev->colors[std::size_t(i) * std::size_t(cols) + std::size_t(j)] : colors0[terrain.index(i, j)];
         };
         tbb::parallel_for(0, next.rows, [&](int I) {
             const int i1 = std::min(2 * I + 2, rows);

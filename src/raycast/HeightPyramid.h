@@ -25,8 +25,9 @@ public:
 
     HeightPyramid() = default;
     // Builds levels 1..max_level (level 0 is the terrain itself), stopping at 1x1.
-    // Without with_colors the levels' colors stay empty.
-    HeightPyramid(const Terrain& terrain, int max_level, bool with_colors = true);
+    // `colors`: level 0's colors, packed, one per sample (the terrain's, or
+    // the sun-lit ones the ray casters paint); null: the levels' colors stay empty.
+    HeightPyramid(const Terrain& terrain, int max_level, const std::uint32_t* colors = nullptr);
 
     int levels() const { return int(levels_.size()); } // coarse levels held (level L is levels_[L-1])
     int rows() const { return rows_; }                 // level 0 (the terrain)

@@ -68,7 +68,7 @@ RayMarcher::Hit RayMarcher::intersect_blocks(const glm::dvec3& a, const glm::dve
         double hit_s = -1.0;
         if (ya <= h) hit_s = s;                                  // front face (or starts inside)
         else if (yb <= h) hit_s = s + (ya - h) / (ya - yb) * (e - s); // top face
-        if (hit_s >= 0.0) return {true, a + hit_s * d, t.color(iz, ix)};
+        if (hit_s >= 0.0) return {true, a + hit_s * d, color_at(iz, ix)};
         if (e >= t1) return {};
         s = e;
         if (next_x <= next_z) {
@@ -97,7 +97,7 @@ RayMarcher::Hit RayMarcher::intersect_bilinear(const glm::dvec3& a, const glm::d
     double prev_s = t0, prev_f = above(t0);
     if (prev_f <= 0.0) {
         const glm::dvec3 p = a + t0 * d;
-        return {true, p, t.color(std::clamp(int(std::lround(p.z / t.h_scale())), 0, t.rows() - 1),
+        return {true, p, color_at(std::clamp(int(std::lround(p.z / t.h_scale())), 0, t.rows() - 1),
                                  std::clamp(int(std::lround(p.x / t.h_scale())), 0, t.cols() - 1))};
     }
     for (int i = 1; i <= n; ++i) {
@@ -112,7 +112,7 @@ RayMarcher::Hit RayMarcher::intersect_bilinear(const glm::dvec3& a, const glm::d
             const glm::dvec3 p = a + hi * d;
             const int row = std::clamp(int(std::lround(p.z / t.h_scale())), 0, t.rows() - 1);
             const int col = std::clamp(int(std::lround(p.x / t.h_scale())), 0, t.cols() - 1);
-            return {true, p, t.color(row, col)};
+            return {true, p, color_at(row, col)};
         }
         prev_s = s;
         prev_f = f;

@@ -24,12 +24,17 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <vector>
+
 namespace overflight {
 
 class RayMarcher {
 public:
     // Keeps references: terrain and env must outlive the marcher.
     RayMarcher(const Terrain& terrain, const Environment& env) : terrain_(terrain), env_(env) {}
+    // Paints `colors` (one per sample, e.g. sun-lit; must outlive the
+    // marcher) instead of the terrain's own; null: the terrain's.
+    void set_colors(const std::vector<Rgb8>* colors) { colors_ = colors; }
 
     // Renders every pixel (parallel over rows). Resizes the images to the camera.
     void render(const Camera& camera, SurfaceModel surface, ColorImage& color, DepthImage& depth) const;
@@ -57,9 +62,13 @@ public:
 private:
     Hit intersect_blocks(const glm::dvec3& a, const glm::dvec3& b) const;
     Hit intersect_bilinear(const glm::dvec3& a, const glm::dvec3& b) const;
+    Rgb8 color_at(int row, int col) const {
+        return colors_ ? (*colors_)[terrain_.index(row, col)] : terrain_.color(row, col);
+    }
 
     const Terrain& terrain_;
     const Environment& env_;
+    const std::vector<Rgb8>* colors_ = nullptr;
 };
 
 } // namespace overflight

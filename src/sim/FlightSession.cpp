@@ -1,6 +1,8 @@
 // Based on: CMSC 23700 project 2a sec. 3 and 4.1-4.2; Fiedler, "Fix your timestep".
 #include "sim/FlightSession.h"
 
+#include "core/SunLight.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -70,10 +72,7 @@ Environment view_environment(const Environment& env, const Terrain& t, FogMode f
     if (fog != FogMode::Exp) e.fog_density = 0;
     else if (!(e.fog_density > 0))
         e.fog_density = float(2.0 / std::max(1.0, std::hypot(double(t.width()), double(t.depth()))));
-    if (!lighting) {
-        e.sun_color = glm::vec3(0.0f);
-        e.ambient = glm::vec3(1.0f);
-    }
+    if (!lighting) bake_lighting(e);
     return e;
 }
 
@@ -85,6 +84,8 @@ FlightSession::FlightSession(const Terrain& terrain, const Environment& environm
     chase_.reset(terrain_, hovercraft_.state(), camera_);
     toggles_.fog = fog_mode_of(environment);
     toggles_.hud = options.hud;
+    toggles_.lighting = options.lighting;
+    toggles_.shadows = environment.shadows;
     pending_.reserve(kMaxCommands);
     commands_.reserve(kMaxCommands);
     record_.frames.reserve(unattended() ? std::size_t(options.frames) : 4096);
@@ -119,6 +120,13 @@ const std::vector<Key>& FlightSession::begin_frame() {
         case Key::Lighting: toggles_.lighting = !toggles_.lighting; break;
         case Key::Wireframe: toggles_.wireframe = !toggles_.wireframe; break;
         case Key::Hud: toggles_.hud = !toggles_.hud; break;
+        case Key::Shadows: toggles_.shadows = !toggles_.shadows; break;
+        case Key::SunLater:
+        case Key::SunEarlier:
+            if (!sun_moved_) sun_hour_ = hour_of_sun(environment_.sun_dir);
+            sun_moved_ = true;
+            sun_hour_ = std::fmod(sun_hour_ + (k == Key::SunLater ? 0.5 : 23.5), 24.0);
+            break;
         default: commands_.push_back(k); break;
         }
     }
@@ -164,7 +172,10 @@ void FlightSession::end_frame() {
 }
 
 Environment FlightSession::environment() const {
-    return view_environment(environment_, terrain_, toggles_.fog, toggles_.lighting);
+    Environment e = view_environment(environment_, terrain_, toggles_.fog, toggles_.lighting);
+    e.shadows = toggles_.shadows;
+    if (sun_moved_) e.sun_dir = sun_at_hour(sun_hour_);
+    return e;
 }
 
 } // namespace overflight

@@ -34,6 +34,7 @@ struct FlightSessionOptions {
     KeyScript script;               // scripted keys, FROM-TO in frames
     VehicleStart start;             // if !given: the terrain centre, facing south
     bool hud = true;
+    bool lighting = true;           // start with sun lighting (false: baked, the `1` key toggles)
 };
 
 // What `f` cycles through: no fog, the hovercraft paper's GL_EXP fog, the
@@ -49,13 +50,14 @@ FogMode fog_mode_of(const Environment& env);
 struct ViewToggles {
     FogMode fog = FogMode::Off;
     bool lighting = true, wireframe = false, hud = true;
+    bool shadows = false; // the terrain's cast shadows (s)
 };
 
 // The camera every fly frame starts from: `fov`, near 0.5, far covering the
 // whole map from any point on it, shear projection (size and pose set later).
 Camera flight_camera(const Terrain& terrain, double fov);
 
-// The data set's environment with the fog (f) and lighting (1) toggles applied;
+// The data set's environment with the fog (f) and lighting (1: sun or baked) toggles applied;
 // a data set without fog gets a density that fades the far side of the map.
 Environment view_environment(const Environment& env, const Terrain& terrain, FogMode fog, bool lighting);
 
@@ -92,7 +94,9 @@ public:
     Camera& camera() { return camera_; }
     const HovercraftState& vehicle() const { return hovercraft_.state(); }
     const ViewToggles& toggles() const { return toggles_; }
-    // The environment with the current toggles (view_environment).
+    // The environment with the current toggles (view_environment), the
+    // shadows toggle and the sun the time-of-day keys moved (t / T: half an
+    // hour along core/SunLight.h's day arc per press).
     Environment environment() const;
     const FlightRecord& record() const { return record_; }
     long long physics_steps() const { return physics_steps_; }
@@ -111,6 +115,8 @@ private:
     std::vector<Key> commands_; // this frame's, for the caller
     unsigned scripted_held_ = 0; // vehicle keys the script holds (a bit per key)
     ViewToggles toggles_;
+    bool sun_moved_ = false; // the time-of-day keys were used: sun_hour_ sets the sun
+    double sun_hour_ = 12.0;
     FlightRecord record_;
     Controls seen_;             // vehicle keys seen by this frame's steps
     long long frame_ = -1;

@@ -27,12 +27,15 @@ enum class Key : std::uint8_t {
     Screenshot, // P
     Hud,        // H
     Quit,       // q
+    Shadows,    // s  (the terrain's cast shadows)
+    SunLater,   // t  (the sun half an hour later along its day arc)
+    SunEarlier, // T  (half an hour earlier)
 };
-inline constexpr int kKeyCount = 13;
+inline constexpr int kKeyCount = 16;
 
 // The name used on the command line (`--press accelerate:0-100`) and in records:
 // accelerate, brake, left, right, fog, lighting, wireframe, detail-up,
-// detail-down, next-method, screenshot, hud, quit.
+// detail-down, next-method, screenshot, hud, quit, shadows, sun-later, sun-earlier.
 const char* key_name(Key k);
 // Inverse of key_name; nullopt for an unknown name.
 std::optional<Key> key_from_name(std::string_view name);

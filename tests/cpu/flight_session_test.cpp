@@ -2,9 +2,12 @@
 // fixed-step physics, toggles and commands, the chase camera and the record.
 #include "core/DemoIsland.h"
 #include "core/Error.h"
+#include "core/SunLight.h"
 #include "sim/FlightSession.h"
 
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include <cmath>
 
@@ -114,8 +117,8 @@ TEST(FlightSession, CommandKeysToggleTheViewOrReachTheCaller) {
     EXPECT_EQ(commands[5], (std::vector<Key>{Key::DetailUp, Key::NextMethod}));
     EXPECT_EQ(commands[7], (std::vector<Key>{Key::Screenshot}));
     EXPECT_TRUE(commands[8].empty());
-    // The environment follows the toggles: no lighting = ambient only.
-    EXPECT_EQ(s.environment().sun_color, glm::vec3(0.0f));
+    // The environment follows the toggles: no lighting = the terrain's colors as they are.
+    EXPECT_TRUE(s.environment().baked);
     EXPECT_EQ(s.environment().fog_density > 0, next_fog_mode(fog0) == FogMode::Exp);
     EXPECT_EQ(s.environment().atmosphere, next_fog_mode(fog0) == FogMode::Atmosphere);
 }
@@ -145,6 +148,30 @@ TEST(FlightSession, FogKeyCyclesFogAndAtmosphere) {
     // An environment with the atmosphere on starts in that mode (fly --atmosphere).
     d.environment.atmosphere = true;
     EXPECT_EQ(FlightSession(d.terrain, d.environment, scripted(1, {})).toggles().fog, FogMode::Atmosphere);
+}
+
+// `s` toggles the terrain's shadows; `t` and `T` move the sun half an hour
+// along the day arc from where the data set's sun is.
+TEST(FlightSession, ShadowsAndTimeOfDayKeys) {
+    const DataSet& d = island();
+    FlightSession s(d.terrain, d.environment,
+                    scripted(5, {{Key::Shadows, 1, 2}, {Key::SunLater, 2, 3}, {Key::SunLater, 3, 4}, {Key::SunEarlier, 4, 5}}));
+    std::vector<Environment> env;
+    while (!s.finished()) {
+        s.begin_frame();
+        env.push_back(s.environment());
+        s.advance(0.0);
+        s.end_frame();
+    }
+    ASSERT_EQ(env.size(), 5u);
+    EXPECT_FALSE(env[0].shadows);
+    EXPECT_TRUE(env[1].shadows);
+    EXPECT_EQ(env[1].sun_dir, d.environment.sun_dir);
+    const double hour = hour_of_sun(d.environment.sun_dir);
+    const auto near = [](const glm::vec3& a, const glm::vec3& b) { return glm::length(a - b) < 1e-5f; };
+    EXPECT_TRUE(near(env[2].sun_dir, sun_at_hour(hour + 0.5)));
+    EXPECT_TRUE(near(env[3].sun_dir, sun_at_hour(hour + 1.0)));
+    EXPECT_TRUE(near(env[4].sun_dir, sun_at_hour(hour + 0.5)));
 }
 
 TEST(FlightSession, InteractiveTimeIsTheWallClockBoundedPerFrame) {

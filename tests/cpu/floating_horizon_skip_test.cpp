@@ -70,7 +70,7 @@ long long expect_same_with_and_without_skipping(const DataSet& ds, Projection pr
 TEST(SliceRunBound, BoundsEveryNearestSampleOfTheRun) {
     const DataSet ds = make_demo_island({257});
     const Terrain& t = ds.terrain;
-    const HeightPyramid pyramid(t, 12, false);
+    const HeightPyramid pyramid(t, 12);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> angle(0.0, 2.0 * std::numbers::pi), stretch(1.0, 3.0), pos(0.0, 1.0);
     long long runs = 0;
@@ -99,7 +99,7 @@ TEST(SliceRunBound, BoundsEveryNearestSampleOfTheRun) {
 TEST(SliceRunBound, BilinearBoundsTheSamplesAroundTheRun) {
     const DataSet ds = make_demo_island({257});
     const Terrain& t = ds.terrain;
-    const HeightPyramid pyramid(t, 12, false);
+    const HeightPyramid pyramid(t, 12);
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> angle(0.0, 2.0 * std::numbers::pi), stretch(1.0, 3.0), pos(0.0, 1.0);
     int bounded = 0;
@@ -128,7 +128,7 @@ TEST(SliceRunBound, BilinearBoundsTheSamplesAroundTheRun) {
 
 TEST(SliceRunBound, NotUsableWithoutACoarseEnoughLevel) {
     Terrain t(5, 5, 1.0f);
-    const HeightPyramid pyramid(t, 12, false); // 3x3, 2x2, 1x1: up to 8 samples square
+    const HeightPyramid pyramid(t, 12); // 3x3, 2x2, 1x1: up to 8 samples square
     EXPECT_TRUE(SliceRunBound(pyramid, 4, std::llround(kOne), 0).usable());
     EXPECT_FALSE(SliceRunBound(pyramid, 32, std::llround(kOne), 0).usable());
     EXPECT_FALSE(SliceRunBound(pyramid, 0, std::llround(kOne), 0).usable());

@@ -72,6 +72,11 @@ TEST(RenderVoxelCli, BadCameraInputIsOneLineAndLeavesNothing) {
         {"--surface voxels", "--surface"},
         {"--tilt-method fast", "--tilt-method"},
         {"--method nope", "--method"},
+        {"--sun 10", "--sun"},
+        {"--sun 400,10", "--sun"},
+        {"--sun 10,95", "--sun"},
+        {"--sun east,10", "--sun"},
+        {"--lighting flat", "--lighting"},
     };
     for (const auto& c : cases) {
         const std::string size = std::string(c.args).find("--size") == std::string::npos ? " --size 16x8 " : " ";
@@ -81,6 +86,17 @@ TEST(RenderVoxelCli, BadCameraInputIsOneLineAndLeavesNothing) {
         EXPECT_EQ(r.err.rfind(std::string("overflight: ") + c.subject + ":", 0), 0u) << c.args << ": " << r.err;
         EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
     }
+}
+
+// A sun below the horizon is night, not an error: one warning line, an image
+// in ambient light.
+TEST(RenderVoxelCli, SunBelowTheHorizonIsAmbientLight) {
+    ScratchDir dir;
+    const std::string out = dir / "night.png";
+    const RunResult r = run_overflight("render demo --demo-size 33 -o '" + out + "' --size 16x8 --sun 90,-5 --shadows");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "overflight: --sun: warning: elevation -5 is at or below the horizon: ambient light only\n");
+    EXPECT_TRUE(std::filesystem::exists(out));
 }
 
 TEST(RenderVoxelCli, LiteralNeedsShear) {

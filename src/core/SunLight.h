@@ -1,0 +1,84 @@
+#pragma once
+// The sun's light on the terrain's samples, for the renderers that paint
+// sample colors (the ray casters): color = albedo x light with
+//     light = ambient + sun_color * max(N . L, 0) * lit,
+// N the sample's normal (Terrain::sample_normal), L the unit direction towards
+// the sun, lit 0 where the terrain shadows the sample (HorizonSweep.h, when
+// Environment::shadows is on) and 1 elsewhere. The GL programs' shade()
+// (gl/GlProgram.cpp) is the same formula per fragment, so every terrain
+// method shows the same brightness. A sun at or below the horizon
+// (L.y <= 0) lights nothing: ambient only, in both.
+//
+// Based on: the CMSC 23700 hovercraft project, sec. 4.1 (directional sun and
+// ambient light, Lambert's cosine law).
+#include "core/DataSet.h"
+#include "core/HorizonSweep.h"
+#include "core/Terrain.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace overflight {
+
+// Unit direction towards a sun at `azimuth_deg` (clockwise from north, as a
+// compass: 90 = east) and `elevation_deg` above the horizon, in world
+// coordinates (X east, Y up, Z south: north is -Z).
+glm::vec3 sun_direction(double azimuth_deg, double elevation_deg);
+
+struct SunAngles {
+    double azimuth = 0, elevation = 0; // degrees; azimuth in [0, 360)
+};
+// Inverse of sun_direction (any length > 0).
+SunAngles sun_angles(const glm::vec3& sun_dir);
+
+// A day arc for the time-of-day key: sunrise due east at 6:00, the sun due
+// south at 12:00 at kNoonElevation, sunset due west at 18:00, below the
+// horizon (night, ambient light only) from 18:00 to 6:00. `hour` in [0, 24).
+inline constexpr double kNoonElevation = 60.0;
+glm::vec3 sun_at_hour(double hour);
+// The hour of the arc whose azimuth is nearest to sun_dir's (6:00..18:00).
+double hour_of_sun(const glm::vec3& sun_dir);
+
+// The papers' look: the terrain's colors shown as they are (whatever light
+// they hold is baked into them); the objects keep the sun. `--lighting
+// baked` and the `1` key set it (Environment::baked).
+void bake_lighting(Environment& env);
+bool lighting_is_baked(const Environment& env);
+
+// The light at a sample of normal `n` (unit): ambient + sun_color * max(n . L, 0) * lit.
+glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit);
+
+// Fills `out` (resized to the terrain's samples) with albedo x light per
+// sample, rounded to 8 bits. `shadow` (null: nothing shadowed) must have
+// been computed for env.sun_dir. Parallel over rows.
+void light_colors(const Terrain& terrain, const Environment& env, const ShadowCeiling* shadow,
+                  std::vector<Rgb8>& out);
+
+// The lit colors of one terrain for the environment of the frame, recomputed
+// only when the sun, its colors or Environment::shadows change (the horizon
+// sweep only when the sun's direction does), so that a still sun costs a
+// comparison per frame.
+class TerrainLighting {
+public:
+    // Keeps a reference to terrain (it must outlive this object).
+    explicit TerrainLighting(const Terrain& terrain) : terrain_(terrain) {}
+
+    // The colors to paint for `env`: nullptr when lighting is baked (the
+    // terrain's own colors), else the lit colors. Valid until the next call.
+    const std::vector<Rgb8>* colors(const Environment& env);
+    // Changes each time colors() returns different colors.
+    std::uint64_t version() const { return version_; }
+
+private:
+    const Terrain& terrain_;
+    bool valid_ = false, baked_ = false;
+    Environment lit_for_;
+    ShadowCeiling shadow_;
+    bool shadow_valid_ = false;
+    std::vector<Rgb8> colors_;
+    std::uint64_t version_ = 0;
+};
+
+} // namespace overflight
