@@ -117,7 +117,7 @@ void prepare_folder(const std::string& dir, const std::function<bool(const std::
         const std::string name = e.path().filename().string();
         if (name.size() > 1 && name[0] == '.' && name.find(".tmp") != std::string::npos &&
             (name.rfind(".r", 0) == 0 || name.rfind(".index.json", 0) == 0 || name.rfind(".overview", 0) == 0 ||
-             name.rfind(kPartPrefix, 1) == 1) &&
+             name.rfind("." + std::string(kPartPrefix), 1) == 1) &&
             (!mine || mine(name)))
             fs::remove(e.path(), ec);
     }

@@ -123,7 +123,9 @@ std::pair<int, int> part_overview_rows(const TileIndex& ix, int first_row, int e
 }
 
 void write_part_record(const std::string& dir, const PartRecord& rec) {
-    if (!rec.overview_heights.empty() || rec.overview_end > rec.overview_first) {
+    {
+        // Written even when empty (a part without overview rows, or no
+        // overview), so that a record is always whole.
         std::vector<std::uint8_t> bytes(2 * rec.overview_heights.size());
         for (std::size_t i = 0; i < rec.overview_heights.size(); ++i) {
             bytes[2 * i] = std::uint8_t(rec.overview_heights[i] & 0xff);

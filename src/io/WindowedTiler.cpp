@@ -70,7 +70,6 @@ struct Plan {
     float h_scale = 1;
     float lo = 0, hi = 0; // valid elevations, metres
     bool integral = true; // whole metres, kept exact (filled voids rounded)
-    long long voids = 0;
     HeightMapping mapping;
     float world_lo = 0, world_hi = 0; // Terrain::min_height / max_height of the whole
     std::string checksum;
@@ -213,12 +212,14 @@ void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::functi
                     ++p.voids;
                     continue;
                 }
-                if (const std::string problem = elevation_problem(double(v)); !problem.empty())
+                if (!(std::abs(v) <= float(kWorldLimit)))
                     throw Error(plan.path, "row " + std::to_string(row0 + i) + ", column " + std::to_string(j) + ": " +
-                                               problem + " (not a terrain height; is the no-data value set?)");
+                                               elevation_problem(double(v)) +
+                                               " (not a terrain height; is the no-data value set?)");
                 p.lo = std::min(p.lo, v);
                 p.hi = std::max(p.hi, v);
-                p.integral = p.integral && v == std::round(v);
+                // Within kWorldLimit, so the conversion is exact and defined.
+                p.integral = p.integral && v == float(std::int32_t(v));
             }
             hashes[std::size_t(row0 + i)] = row_hash(row, cols);
         }
@@ -236,7 +237,6 @@ void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::functi
     if (all.voids == std::int64_t(rows) * cols) throw Error(plan.path, "raster is entirely no-data");
     plan.lo = all.lo;
     plan.hi = all.hi;
-    plan.voids = all.voids;
     plan.integral = all.integral && plan.warp.empty();
     plan.mapping = choose_height_mapping(plan.lo, plan.hi, plan.integral);
     std::vector<std::uint16_t> ends;
@@ -308,6 +308,27 @@ std::int64_t bytes_per_tile(const Plan& plan, int tile_size) {
     return 12 * side * side + 48 * std::int64_t(tile_size) * tile_size + (16 << 20);
 }
 
+// The tile grid of the planned terrain; Error(path, ...) when it is too large.
+TileGrid grid_of(const Plan& plan, int tile_size) {
+    try {
+        return sized_tile_grid(plan.rows, plan.cols, tile_size, plan.h_scale, plan.mapping.v_scale, plan.mapping.y_offset);
+    } catch (const Error& e) {
+        if (e.subject() != "source") throw;
+        throw Error(plan.path, e.problem());
+    }
+}
+
+// How many tiles may be in flight: half the bound is theirs (a quarter is
+// GDAL's block cache, the rest the survey's strips and the index).
+int workers_within(const Plan& plan, int tile_size, std::int64_t budget) {
+    const std::int64_t per_tile = bytes_per_tile(plan, tile_size), for_tiles = budget / 2;
+    if (per_tile > for_tiles)
+        throw Error("memory bound", std::to_string(budget >> 20) + " MiB cannot hold one " + std::to_string(tile_size) +
+                                        "-sample tile's window (about " + std::to_string(2 * per_tile >> 20) +
+                                        " MiB needed); give more or use a smaller --tile-size");
+    return int(std::min<std::int64_t>(tbb::this_task_arena::max_concurrency(), for_tiles / per_tile));
+}
+
 } // namespace
 
 TileWriteReport tile_raster_in_windows(const std::string& path, const std::string& dir,
@@ -344,13 +365,14 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         std::string unit_name;
         plan.band.unit = metres_per_unit(unit ? unit : "", unit_name);
         plan_grid(plan, src.get());
+        // Sizes and memory are checked before the source is read.
+        workers_within(plan, grid_of(plan, o.tile_size).tile_size, budget);
         survey(plan, src.get(), budget, [&](double f) { progress(0.1 * f); });
     }
 
     TileWriteReport report;
     TileIndex& ix = report.index;
-    ix.grid = sized_tile_grid(plan.rows, plan.cols, o.tile_size, plan.h_scale, plan.mapping.v_scale,
-                              plan.mapping.y_offset);
+    ix.grid = grid_of(plan, o.tile_size);
     const TileGrid& g = ix.grid;
     ix.padded_size = int(g.padded_rows());
     ix.source = path;
@@ -371,13 +393,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         ix.overview_cols = (plan.cols - 2) / f + 2;
     }
 
-    const std::int64_t per_tile = bytes_per_tile(plan, g.tile_size);
-    const std::int64_t for_tiles = budget / 2;
-    if (per_tile > for_tiles)
-        throw Error("memory bound", std::to_string(budget >> 20) + " MiB cannot hold one " + std::to_string(g.tile_size) +
-                                        "-sample tile's window (about " + std::to_string(2 * per_tile >> 20) +
-                                        " MiB needed); give more or use a smaller --tile-size");
-    const int workers = int(std::min<std::int64_t>(tbb::this_task_arena::max_concurrency(), for_tiles / per_tile));
+    const int workers = workers_within(plan, g.tile_size, budget);
 
     const TilePart part = options.part;
     const auto [first_row, end_row] = part_tile_rows(g.tile_rows, part);
@@ -386,7 +402,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
     prepare_folder(dir, [&](const std::string& name) {
         if (part.count == 1) return true;
         int r = -1;
-        if (name.rfind(own_prefix, 0) == 0) return true;
+        if (name.rfind("." + own_prefix, 0) == 0) return true; // a temporary of its record
         return std::sscanf(name.c_str(), ".r%d_c", &r) == 1 && r >= first_row && r < end_row;
     });
     const bool resume = resumable(dir, ix);
