@@ -45,8 +45,8 @@ std::vector<std::uint8_t> color_planes(const Terrain& t) {
     return planes;
 }
 
-TileContent::TileContent(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t, const TileApron& apron,
-            const TileMeasures& measures)
+TileContent::TileContent(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t,
+                         const TileApron& apron, const TileMeasures& measures)
     : gt_(tile_geotransform(ix, r, c)), rgb_(color_planes(t.samples)) {
     const int n = ix.grid.tile_size;
     for (const auto* side : {&apron.north, &apron.south, &apron.west, &apron.east})

@@ -134,8 +134,13 @@ void write_part_record(const std::string& dir, const PartRecord& rec) {
         bytes.insert(bytes.end(), rec.overview_rgb.begin(), rec.overview_rgb.end());
         write_file_atomically(record_path(dir, rec.part, ".overview"), bytes.data(), bytes.size());
     }
-    const json j{{"part", rec.part.index},       {"parts", rec.part.count},         {"checksum", rec.checksum},
-                 {"tile_size", rec.tile_size}, {"rows", {rec.first_row, rec.end_row}}, {"min_height", rec.min_height}, {"max_height", rec.max_height},
+    const json j{{"part", rec.part.index},
+                 {"parts", rec.part.count},
+                 {"checksum", rec.checksum},
+                 {"tile_size", rec.tile_size},
+                 {"rows", {rec.first_row, rec.end_row}},
+                 {"min_height", rec.min_height},
+                 {"max_height", rec.max_height},
                  {"roughness", rec.roughness}};
     const std::string text = j.dump() + "\n";
     write_file_atomically(record_path(dir, rec.part, ".json"), text.data(), text.size());

@@ -366,8 +366,14 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         plan.band.unit = metres_per_unit(unit ? unit : "", unit_name);
         plan_grid(plan, src.get());
         // Sizes and memory are checked before the source is read.
-        workers_within(plan, grid_of(plan, o.tile_size).tile_size, budget);
-        survey(plan, src.get(), budget, [&](double f) { progress(0.1 * f); });
+        const TileGrid sized = grid_of(plan, o.tile_size);
+        workers_within(plan, sized.tile_size, budget);
+        const int tiles = sized.tile_rows * sized.tile_cols;
+        survey(plan, src.get(), budget, [&](double f) {
+            progress(0.1 * f);
+            // A stop asked for while the source is surveyed (it may take minutes).
+            if (o.on_tile && !o.on_tile(0, tiles)) throw Error(dir, "interrupted");
+        });
     }
 
     TileWriteReport report;

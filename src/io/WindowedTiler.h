@@ -56,7 +56,8 @@ struct WindowedTileOptions {
 // load_gdal_raster, except that no side limit applies but the tile grid's,
 // kMaxTiledSide), Error("--memory-mib", ...) when the bound cannot hold one
 // tile's window, Error(dir, "interrupted") when options.tile.on_tile
-// returned false, and the write errors of write_tile_directory.
+// returned false (it is also called with 0 tiles done while the source is
+// surveyed), and the write errors of write_tile_directory.
 TileWriteReport tile_raster_in_windows(const std::string& path, const std::string& dir,
                                        const WindowedTileOptions& options);
 
