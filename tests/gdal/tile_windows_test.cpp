@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 using namespace overflight;
 namespace fs = std::filesystem;
@@ -111,6 +112,22 @@ TEST(TileWindows, ProjectedDemWithVoidsGivesTheSameTiles) {
         ASSERT_EQ(r.exit_code, 0) << r.err;
         expect_same_files(dir, ref, false);
     }
+}
+
+// A re-run keeps the finished tiles and rewrites a broken one, ending
+// byte-identical; a stop while tiling leaves an index readers refuse.
+TEST(TileWindows, ReRunResumes) {
+    test::ScratchDir scratch;
+    const std::string dem = scratch / "dem.tif", ref = scratch / "ref", dir = scratch / "t";
+    write_dem(dem, 200, 150, false, 4);
+    const std::string args = "tile '" + dem + "' --tile-size 65 -o ";
+    ASSERT_EQ(test::run_overflight(args + "'" + ref + "'").exit_code, 0);
+    fs::copy(ref, dir);
+    std::ofstream(dir + "/r1_c1.tif", std::ios::trunc) << "garbage";
+    const auto again = test::run_overflight(args + "'" + dir + "'");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_NE(again.out.find("1 written, 11 already done, 4 without data"), std::string::npos) << again.out;
+    expect_same_files(dir, ref, true);
 }
 
 TEST(TileWindows, RealDemGivesTheSameTiles) {
