@@ -11,6 +11,7 @@ Error in_option_terms(const Error& e) {
         {"near step", "--near-step"},       {"distance LOD", "--lod"},         {"tile size", "--tile-size"},
         {"key press", "--press"},           {"projection", "--projection"},    {"terrain method", "--method"},
         {"vehicle start", "--at"},          {"vehicle heading", "--heading"},
+        {"memory bound", "--memory-mib"},
     };
     for (const auto& [subject, option] : options)
         if (e.subject() == subject) return Error(option, e.subject() + " " + e.problem());

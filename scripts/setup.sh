@@ -11,7 +11,7 @@ packages=(
   libgdal-dev gdal-bin libglfw3-dev libepoxy-dev libegl-dev libgl1-mesa-dri libegl-mesa0
   libglm-dev libtbb-dev libcli11-dev libtomlplusplus-dev libstb-dev libtinyobjloader-dev
   libtinygltf-dev libimgui-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev xvfb xauth
-  ffmpeg
+  ffmpeg parallel
 )
 
 if [ "${OVERFLIGHT_SKIP_INSTALL:-0}" != 1 ]; then

@@ -62,14 +62,16 @@ Rgb8 elevation_ramp(float height, float min_height, float max_height, float sea_
                 std::uint8_t(lo.b + (hi.b - lo.b) * s)};
 }
 
+Rgb8 shaded_color(const Terrain& t, int row, int col, float min_height, float max_height, float sea_level) {
+    const Rgb8 base = elevation_ramp(t.sample_height(row, col), min_height, max_height, sea_level);
+    const float k = 0.35f + 0.65f * hillshade(t, row, col);
+    return Rgb8{std::uint8_t(base.r * k), std::uint8_t(base.g * k), std::uint8_t(base.b * k)};
+}
+
 void shade_by_elevation(Terrain& t, float sea_level) {
     const float lo = t.min_height(), hi = t.max_height();
     tbb::parallel_for(0, t.rows(), [&](int row) {
-        for (int col = 0; col < t.cols(); ++col) {
-            const Rgb8 base = elevation_ramp(t.sample_height(row, col), lo, hi, sea_level);
-            const float k = 0.35f + 0.65f * hillshade(t, row, col);
-            t.color(row, col) = Rgb8{std::uint8_t(base.r * k), std::uint8_t(base.g * k), std::uint8_t(base.b * k)};
-        }
+        for (int col = 0; col < t.cols(); ++col) t.color(row, col) = shaded_color(t, row, col, lo, hi, sea_level);
     });
 }
 

@@ -14,6 +14,13 @@ float hillshade(const Terrain& t, int row, int col, float azimuth_deg = 315.0f, 
 // forest, rock and snow spread over [sea_level, max_height].
 Rgb8 elevation_ramp(float height, float min_height, float max_height, float sea_level);
 
+// The color shade_by_elevation gives sample (row, col) of a terrain whose
+// lowest and highest world heights are min_height and max_height. It reads
+// only the 3x3 samples around (row, col) (clamped to t), so a window of a
+// larger terrain with one sample of margin, and min/max of the whole, gives
+// the whole terrain's colors.
+Rgb8 shaded_color(const Terrain& t, int row, int col, float min_height, float max_height, float sea_level);
+
 // Fills t.colors() with elevation_ramp x (0.35 + 0.65 hillshade). Parallel over rows.
 void shade_by_elevation(Terrain& t, float sea_level);
 

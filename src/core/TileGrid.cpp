@@ -31,8 +31,8 @@ void validate_sizes(const TileGrid& g, const std::string& subject) {
                                  std::to_string(kMaxTileSize));
     const std::string grid_text = "tile grid " + std::to_string(g.tile_rows) + "x" + std::to_string(g.tile_cols) +
                                   " of " + std::to_string(g.tile_size) + "-sample tiles";
-    if (g.tile_rows < 1 || g.tile_cols < 1 || g.padded_rows() > kMaxPaddedSide || g.padded_cols() > kMaxPaddedSide)
-        throw Error(subject, grid_text + " is empty or larger than " + std::to_string(kMaxPaddedSide) +
+    if (g.tile_rows < 1 || g.tile_cols < 1 || g.padded_rows() > kMaxTiledSide || g.padded_cols() > kMaxTiledSide)
+        throw Error(subject, grid_text + " is empty or larger than " + std::to_string(kMaxTiledSide) +
                                  " samples per side");
     const std::string source_text = std::to_string(g.source_rows) + "x" + std::to_string(g.source_cols) + " samples";
     if (g.source_rows < 2 || g.source_cols < 2 || g.source_rows > g.padded_rows() || g.source_cols > g.padded_cols())
@@ -110,26 +110,43 @@ int TileGrid::coarsest_level() const {
     return k - 1;
 }
 
-TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
+TileGrid sized_tile_grid(int rows, int cols, int tile_size, float h_scale, float v_scale, float y_offset) {
     if (!is_pow2_plus1(tile_size) || tile_size < 3)
         throw Error("tile size", std::to_string(tile_size) + " is not 2^k+1 (3, 5, 9, ..., 257, 513, ...)");
+    if (std::max(rows, cols) > kMaxTiledSide - 1)
+        throw Error("source", std::to_string(cols) + "x" + std::to_string(rows) + " samples pad to more than " +
+                                  std::to_string(kMaxTiledSide) + " per side, the largest tile grid");
     // At least 3x3: a 2x2 terrain still makes one tile with a centre sample.
-    const int padded = std::max(3, next_pow2_plus1(std::max(terrain.rows(), terrain.cols())));
+    const int padded = std::max(3, next_pow2_plus1(std::max(rows, cols)));
     TileGrid g;
     g.tile_size = std::min(tile_size, padded);
     if (g.tile_size > kMaxTileSize)
         throw Error("tile size", std::to_string(tile_size) + " makes tiles of " + std::to_string(g.tile_size) +
                                        " samples per side, more than the " + std::to_string(kMaxTileSize) + " a tile may have");
     g.tile_rows = g.tile_cols = (padded - 1) / g.stride();
-    g.source_rows = terrain.rows();
-    g.source_cols = terrain.cols();
-    g.h_scale = terrain.h_scale();
-    g.v_scale = terrain.v_scale();
-    g.y_offset = terrain.y_offset();
+    g.source_rows = rows;
+    g.source_cols = cols;
+    g.h_scale = h_scale;
+    g.v_scale = v_scale;
+    g.y_offset = y_offset;
     const std::size_t n = std::size_t(g.tile_rows) * std::size_t(g.tile_cols);
     g.exists.assign(n, 0);
+    const float a = tile_world_height(g, 0), b = tile_world_height(g, 65535);
     g.min_height.assign(n, 0.0f);
     g.max_height.assign(n, 0.0f);
+    for (int r = 0; r < g.tile_rows; ++r)
+        for (int c = 0; c < g.tile_cols; ++c)
+            if (g.holds_source(r, c)) {
+                g.exists[g.index(r, c)] = 1;
+                g.min_height[g.index(r, c)] = std::min(a, b);
+                g.max_height[g.index(r, c)] = std::max(a, b);
+            }
+    return g;
+}
+
+TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
+    TileGrid g = sized_tile_grid(terrain.rows(), terrain.cols(), tile_size, terrain.h_scale(), terrain.v_scale(),
+                                 terrain.y_offset());
     const int s = g.stride();
     for (int r = 0; r < g.tile_rows; ++r)
         for (int c = 0; c < g.tile_cols; ++c) {
@@ -155,6 +172,40 @@ TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size) {
     return g;
 }
 
+TileSamples cut_tile(const TerrainWindow& window, const TileGrid& grid, int tile_row, int tile_col) {
+    const int n = grid.tile_size, s = grid.stride();
+    const Terrain& w = window.samples;
+    TileSamples t{Terrain(n, n, grid.h_scale, grid.v_scale, grid.y_offset), {}};
+    for (int i = 0; i < n; ++i) {
+        const int gi = tile_row * s + i, si = std::min(gi, grid.source_rows - 1);
+        for (int j = 0; j < n; ++j) {
+            const int gj = tile_col * s + j, sj = std::min(gj, grid.source_cols - 1);
+            t.samples.raw(i, j) = w.raw(si - window.row0, sj - window.col0);
+            Rgb8 col = w.color(si - window.row0, sj - window.col0);
+            if (si != gi || sj != gj) col = Rgb8{std::uint8_t(col.r / 2), std::uint8_t(col.g / 2), std::uint8_t(col.b / 2)};
+            t.samples.color(i, j) = col;
+        }
+    }
+    return t;
+}
+
+TileApron cut_apron(const TerrainWindow& window, const TileGrid& grid, int tile_row, int tile_col) {
+    const int n = grid.tile_size, S = grid.stride();
+    const int r0 = tile_row * S, c0 = tile_col * S;
+    auto raw = [&](int gi, int gj) {
+        return window.samples.raw(std::clamp(gi, 0, grid.source_rows - 1) - window.row0,
+                                  std::clamp(gj, 0, grid.source_cols - 1) - window.col0);
+    };
+    TileApron a;
+    for (int k = 0; k < n; ++k) {
+        a.north.push_back(raw(r0 - 1, c0 + k));
+        a.south.push_back(raw(r0 + n, c0 + k));
+        a.west.push_back(raw(r0 + k, c0 - 1));
+        a.east.push_back(raw(r0 + k, c0 + n));
+    }
+    return a;
+}
+
 TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col, bool with_normals,
                      int level) {
     const int n = grid.level_size(level), s = grid.stride(), step = 1 << level;
@@ -176,19 +227,7 @@ TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row,
 }
 
 TileApron cut_apron(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col) {
-    const int n = grid.tile_size, S = grid.stride();
-    const int r0 = tile_row * S, c0 = tile_col * S;
-    auto raw = [&](int gi, int gj) {
-        return terrain.raw(std::clamp(gi, 0, terrain.rows() - 1), std::clamp(gj, 0, terrain.cols() - 1));
-    };
-    TileApron a;
-    for (int k = 0; k < n; ++k) {
-        a.north.push_back(raw(r0 - 1, c0 + k));
-        a.south.push_back(raw(r0 + n, c0 + k));
-        a.west.push_back(raw(r0 + k, c0 - 1));
-        a.east.push_back(raw(r0 + k, c0 + n));
-    }
-    return a;
+    return cut_apron(TerrainWindow{terrain, 0, 0}, grid, tile_row, tile_col);
 }
 
 std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron, const TileGrid& grid, int tile_row,

@@ -14,9 +14,13 @@
 //   - a tile has at most kMaxTileSize = 2^15+1 samples per side, the largest
 //     2^k+1 whose sample count (2^30 + 2^16 + 1) still fits a signed 32-bit
 //     int, as GDAL's raster I/O and the loaders' per-tile buffers count it;
-//   - the padded square has at most kMaxPaddedSide = 65537 = 2^16+1 samples
-//     per side, the largest terrain Overflight loads (core/Terrain.h), so the
-//     tile grid is at most 32768 tiles per side.
+//   - the padded square has at most kMaxTiledSide = 2^20+1 samples per side.
+//     Only its metadata (the tile grid, index.json, the overview) is ever
+//     held whole; a tiler reads the source in windows and a renderer loads
+//     tiles, so the limit of what is loaded at once (kMaxPaddedSide = 65537,
+//     the largest Terrain, core/Terrain.h) does not bound it. 2^20+1 keeps
+//     every global sample index and the padded extent in an int and the
+//     index of 257-sample tiles (4096^2 of them) within a few hundred MB.
 #include "core/Terrain.h"
 
 #include <glm/vec3.hpp>
@@ -30,6 +34,7 @@ namespace overflight {
 
 inline constexpr int kMaxTileSize = 32769;
 inline constexpr int kMaxPaddedSide = 65537;
+inline constexpr int kMaxTiledSide = 1048577;
 
 // The tiling of a terrain (what a tile directory's index.json describes).
 // Tile (r, c) covers global samples rows r*(s-1) .. r*(s-1)+s-1 and columns
@@ -135,9 +140,29 @@ std::vector<glm::vec3> tile_normals(const Terrain& tile, const TileApron& apron,
 // Error("tile size", ...) when tile_size is not 2^k+1 >= 3 or the clamped
 // size exceeds kMaxTileSize.
 TileGrid terrain_tile_grid(const Terrain& terrain, int tile_size);
+// The same grid for a source of rows x cols samples that is not held in
+// memory: sizes, scales and existence flags; min_height/max_height hold the
+// height mapping's whole range until the tiles are cut. Throws as
+// terrain_tile_grid, and Error("source", ...) when the padded square would
+// exceed kMaxTiledSide.
+TileGrid sized_tile_grid(int rows, int cols, int tile_size, float h_scale, float v_scale, float y_offset);
 // The padded samples of one tile at `level` (every 2^level-th sample), with
 // Terrain::sample_normal of the whole terrain when with_normals.
 TileSamples cut_tile(const Terrain& terrain, const TileGrid& grid, int tile_row, int tile_col, bool with_normals,
                      int level = 0);
+
+// A window of a source too large to hold whole: `samples` are the source's
+// rows row0 .. row0 + samples.rows() - 1 and columns col0 .. col0 +
+// samples.cols() - 1 (grid.source_rows x source_cols is the whole source).
+struct TerrainWindow {
+    const Terrain& samples;
+    int row0 = 0, col0 = 0;
+};
+// cut_tile (level 0, without normals) and cut_apron of the whole source, from
+// a window holding every source sample they read: the tile's samples and the
+// apron around them, clamped to the source. The result equals the cut of
+// the whole terrain.
+TileSamples cut_tile(const TerrainWindow& window, const TileGrid& grid, int tile_row, int tile_col);
+TileApron cut_apron(const TerrainWindow& window, const TileGrid& grid, int tile_row, int tile_col);
 
 } // namespace overflight

@@ -9,6 +9,7 @@
 #include "core/Terrain.h"
 #include "io/Gdal.h"
 #include "io/GdalReducedReads.h"
+#include "io/GdalSource.h"
 #include "io/HeightMapping.h"
 #include "io/UsgsDemHeader.h"
 
@@ -36,11 +37,6 @@ namespace {
 // exactly representable, and distinct from every source's own no-data value.
 constexpr float kNoData = -1.0e30f;
 
-struct SrsCloser {
-    void operator()(OGRSpatialReferenceH s) const { if (s) OSRDestroySpatialReference(s); }
-};
-using Srs = std::unique_ptr<void, SrsCloser>;
-
 std::string fmt(double v, int precision = 6) {
     std::ostringstream o;
     o.precision(precision);
@@ -51,30 +47,6 @@ std::string fmt(double v, int precision = 6) {
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
-}
-
-// Metres per vertical unit from GDAL's band unit type (free text in practice).
-double metres_per_unit(const std::string& unit, std::string& name) {
-    const std::string u = lower(unit);
-    if (u.empty() || u == "m" || u == "metre" || u == "meter" || u == "metres" || u == "meters") {
-        name = "metre";
-        return 1.0;
-    }
-    if (u == "us-ft" || u == "ftus" || u == "us survey foot" || u == "us_survey_foot" || u == "foot_us" ||
-        u == "us foot" || u == "survey foot") {
-        name = "US survey foot";
-        return 1200.0 / 3937.0;
-    }
-    if (u == "ft" || u == "foot" || u == "feet" || u == "international foot" || u == "intl foot") {
-        name = "foot";
-        return 0.3048;
-    }
-    if (u == "cm" || u == "centimetre" || u == "centimeter") {
-        name = "centimetre";
-        return 0.01;
-    }
-    name = unit + " (unknown, taken as metres)";
-    return 1.0;
 }
 
 std::string srs_name(OGRSpatialReferenceH srs) {
@@ -97,36 +69,6 @@ std::string srs_name(OGRSpatialReferenceH srs) {
     const char* code = OSRGetAuthorityCode(srs, nullptr);
     if (auth && code) s += " (" + std::string(auth) + ":" + code + ")";
     return s;
-}
-
-std::string to_wkt(OGRSpatialReferenceH srs) {
-    char* wkt = nullptr;
-    OSRExportToWkt(srs, &wkt);
-    std::string s = wkt ? wkt : "";
-    CPLFree(wkt);
-    return s;
-}
-
-// The UTM zone of (lon, lat) on the datum of the geographic `src`: EPSG codes
-// for WGS 84, otherwise the datum is kept so no datum shift is introduced.
-Srs utm_for(OGRSpatialReferenceH src, double lon, double lat) {
-    const int zone = std::clamp(int(std::floor((lon + 180.0) / 6.0)) + 1, 1, 60);
-    const bool north = lat >= 0;
-    Srs utm(OSRNewSpatialReference(nullptr));
-    const char* code = OSRGetAuthorityCode(src, nullptr);
-    const char* auth = OSRGetAuthorityName(src, nullptr);
-    if (auth && code && std::string(auth) == "EPSG" && std::string(code) == "4326") {
-        OSRImportFromEPSG(utm.get(), (north ? 32600 : 32700) + zone);
-    } else {
-        OSRCopyGeogCSFrom(utm.get(), src);
-        OSRSetUTM(utm.get(), zone, north);
-        const char* geog = OSRGetAttrValue(src, "GEOGCS", 0);
-        const std::string name = std::string(geog ? geog : "unknown") + " / UTM zone " + std::to_string(zone) +
-                                 (north ? "N" : "S");
-        OSRSetProjCS(utm.get(), name.c_str());
-    }
-    OSRSetAxisMappingStrategy(utm.get(), OAMS_TRADITIONAL_GIS_ORDER);
-    return utm;
 }
 
 // Largest side of a Terrain (2^16 + 1 samples, core/Terrain.h).

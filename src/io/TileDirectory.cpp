@@ -6,6 +6,7 @@
 #include "core/Error.h"
 #include "io/Files.h"
 #include "io/Gdal.h"
+#include "io/TileFiles.h"
 #include "io/TileRasters.h"
 
 #include <gdal.h>
@@ -23,128 +24,6 @@ namespace fs = std::filesystem;
 namespace overflight {
 
 namespace {
-
-enum class TileFile { Heights, Colors, Apron, D2 };
-
-std::string tile_path(const std::string& dir, int r, int c, TileFile f) {
-    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif", "_d2.tif"};
-    return (fs::path(dir) / ("r" + std::to_string(r) + "_c" + std::to_string(c) + suffix[int(f)])).string();
-}
-
-std::string index_path(const std::string& dir) { return (fs::path(dir) / "index.json").string(); }
-
-std::array<double, 6> tile_geotransform(const TileIndex& ix, int r, int c) {
-    std::array<double, 6> gt = ix.geotransform;
-    const double col0 = double(c) * ix.grid.stride(), row0 = double(r) * ix.grid.stride();
-    gt[0] = ix.geotransform[0] + col0 * ix.geotransform[1] + row0 * ix.geotransform[2];
-    gt[3] = ix.geotransform[3] + col0 * ix.geotransform[4] + row0 * ix.geotransform[5];
-    return gt;
-}
-
-// Checked before writing, so that no run leaves an index its readers refuse.
-void write_index(const std::string& dir, const TileIndex& ix) {
-    const std::string path = index_path(dir);
-    validate_tile_index(ix, path);
-    const std::string text = tile_index_text(ix);
-    write_file_atomically(path, text.data(), text.size());
-}
-
-// Colors as three planes (red, green, blue), the layout RasterSpec takes.
-std::vector<std::uint8_t> color_planes(const Terrain& t) {
-    const std::size_t n = t.colors().size();
-    std::vector<std::uint8_t> planes(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-        planes[i] = t.colors()[i].r;
-        planes[n + i] = t.colors()[i].g;
-        planes[2 * n + i] = t.colors()[i].b;
-    }
-    return planes;
-}
-
-// The files of one tile with their contents, in writing order: colors,
-// apron, d2, then heights, whose appearing under its final name marks a
-// finished tile. Not movable: the specs point into the buffers.
-class TileContent {
-public:
-    TileContent(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t, const TileApron& apron,
-                const TileMeasures& measures)
-        : gt_(tile_geotransform(ix, r, c)), rgb_(color_planes(t.samples)) {
-        const int n = ix.grid.tile_size;
-        for (const auto* side : {&apron.north, &apron.south, &apron.west, &apron.east})
-            sides_.insert(sides_.end(), side->begin(), side->end());
-        files_.emplace_back(tile_path(dir, r, c, TileFile::Colors),
-                            RasterSpec{n, n, 3, GDT_Byte, rgb_.data(), &gt_, ix.crs_wkt, nullptr, true, ix.levels});
-        files_.emplace_back(tile_path(dir, r, c, TileFile::Apron),
-                            RasterSpec{n, 4, 1, GDT_UInt16, sides_.data(), nullptr, "", nullptr, false, 0});
-        if (ix.levels > 0) {
-            // The full tile's d2 at its even samples (the centres of all nodes a
-            // level >= 1 keeps), with levels of every 2^m-th of them: level m of
-            // the tile reads level m - 1 of this file.
-            const std::vector<float> d2 = measures.d2(t.samples);
-            const int h = (n - 1) / 2 + 1;
-            even_d2_.resize(std::size_t(h) * std::size_t(h));
-            for (int i = 0; i < h; ++i)
-                for (int j = 0; j < h; ++j)
-                    even_d2_[std::size_t(i) * std::size_t(h) + std::size_t(j)] = d2[t.samples.index(2 * i, 2 * j)];
-            files_.emplace_back(tile_path(dir, r, c, TileFile::D2),
-                                RasterSpec{h, h, 1, GDT_Float32, even_d2_.data(), nullptr, "", nullptr, false, ix.levels - 1});
-        }
-        files_.emplace_back(tile_path(dir, r, c, TileFile::Heights),
-                            RasterSpec{n, n, 1, GDT_UInt16, t.samples.heights().data(), &gt_, ix.crs_wkt, &ix.grid, false,
-                                       ix.levels});
-    }
-    TileContent(const TileContent&) = delete;
-    TileContent& operator=(const TileContent&) = delete;
-
-    void write() const {
-        for (const auto& [path, spec] : files_) write_geotiff(path, spec);
-    }
-    // Whether every file already holds exactly this content.
-    bool on_disk() const {
-        return std::all_of(files_.begin(), files_.end(), [](const auto& f) { return geotiff_matches(f.first, f.second); });
-    }
-
-private:
-    std::array<double, 6> gt_;
-    std::vector<std::uint8_t> rgb_;
-    std::vector<std::uint16_t> sides_;
-    std::vector<float> even_d2_;
-    std::vector<std::pair<std::string, RasterSpec>> files_;
-};
-
-// Every f-th sample of `t` (clamped to its last row and column, with the
-// padding's darkened colors there, as cut_tile does).
-Terrain decimate(const Terrain& t, int f, int rows, int cols) {
-    Terrain o(rows, cols, t.h_scale() * float(f), t.v_scale(), t.y_offset());
-    for (int i = 0; i < rows; ++i) {
-        const int gi = i * f, si = std::min(gi, t.rows() - 1);
-        for (int j = 0; j < cols; ++j) {
-            const int gj = j * f, sj = std::min(gj, t.cols() - 1);
-            o.raw(i, j) = t.raw(si, sj);
-            Rgb8 col = t.color(si, sj);
-            if (si != gi || sj != gj) col = Rgb8{std::uint8_t(col.r / 2), std::uint8_t(col.g / 2), std::uint8_t(col.b / 2)};
-            o.color(i, j) = col;
-        }
-    }
-    return o;
-}
-
-// overview.tif and overview_rgb.tif, unless a resumed run finds them holding
-// exactly this content.
-void write_overview(const std::string& dir, const TileIndex& ix, const Terrain& t, bool resume) {
-    const int f = ix.overview_stride;
-    const Terrain o = decimate(t, f, ix.overview_rows, ix.overview_cols);
-    const std::array<double, 6>& g = ix.geotransform;
-    const std::array<double, 6> gt{g[0], g[1] * f, g[2] * f, g[3], g[4] * f, g[5] * f};
-    const std::vector<std::uint8_t> rgb = color_planes(o);
-    const std::pair<std::string, RasterSpec> files[] = {
-        {(fs::path(dir) / kOverviewColors).string(),
-         RasterSpec{o.cols(), o.rows(), 3, GDT_Byte, rgb.data(), &gt, ix.crs_wkt, nullptr, true, 0}},
-        {(fs::path(dir) / kOverviewHeights).string(),
-         RasterSpec{o.cols(), o.rows(), 1, GDT_UInt16, o.heights().data(), &gt, ix.crs_wkt, &ix.grid, false, 0}}};
-    for (const auto& [path, spec] : files)
-        if (!(resume && geotiff_matches(path, spec))) write_geotiff(path, spec);
-}
 
 void read_colors(GDALDatasetH ds, const std::string& path, Terrain& t, int reduce = 1) {
     const std::size_t n = t.colors().size();
@@ -233,37 +112,6 @@ TileIndex plan_index(const DataSet& data, const TileWriteOptions& options) {
     return ix;
 }
 
-// Creates `dir` and removes the temporary files a killed run left behind
-// (they cannot have cleaned up after themselves).
-void prepare_folder(const std::string& dir) {
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (!fs::is_directory(dir)) throw Error(dir, "cannot create the output folder");
-    for (const auto& e : fs::directory_iterator(dir, ec)) {
-        const std::string name = e.path().filename().string();
-        if (name.size() > 1 && name[0] == '.' && name.find(".tmp") != std::string::npos &&
-            (name.rfind(".r", 0) == 0 || name.rfind(".index.json", 0) == 0 || name.rfind(".overview", 0) == 0))
-            fs::remove(e.path(), ec);
-    }
-}
-
-// Whether `dir` holds a run of the same source, tile size and layout, whose
-// finished files may be kept (each is still checked before it is).
-bool resumable(const std::string& dir, const TileIndex& ix) {
-    std::error_code ec;
-    if (!fs::exists(index_path(dir), ec)) return false;
-    try {
-        const std::vector<std::uint8_t> bytes = read_file_bytes(index_path(dir));
-        const TileIndex old = parse_tile_index(std::string(bytes.begin(), bytes.end()), index_path(dir));
-        return old.checksum == ix.checksum && old.grid.tile_size == ix.grid.tile_size &&
-               old.geotransform == ix.geotransform && old.crs_wkt == ix.crs_wkt && old.apron &&
-               old.overview_stride == ix.overview_stride && old.levels == ix.levels &&
-               old.grid.d2_min_resolution == ix.grid.d2_min_resolution;
-    } catch (const Error&) {
-        return false;
-    }
-}
-
 } // namespace
 
 std::string terrain_checksum(const Terrain& t) {
@@ -308,7 +156,7 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
         fs::remove(fs::path(dir) / kOverviewHeights, ec); // left over from a larger source
         fs::remove(fs::path(dir) / kOverviewColors, ec);
     } else {
-        write_overview(dir, ix, t, resume);
+        write_overview(dir, ix, decimate(t, ix.overview_stride, ix.overview_rows, ix.overview_cols), resume);
     }
 
     const TileGrid& g = ix.grid;

@@ -57,6 +57,9 @@
 //                        georeferenced; written only when f > 1. It lets a
 //                        renderer place its camera and answer height queries
 //                        without loading a terrain larger than memory.
+//   .part-K-of-N.json,   the records of part K of a run in N parts
+//   .part-K-of-N.overview (io/TileParts.h), from which the last part writes
+//                        the overview and index.json.
 // Every file is encoded in memory, written to a temporary name (every write
 // and the close checked: a full disk fails with "no space left on device")
 // and renamed; the heights file is renamed last, so it marks a finished tile.

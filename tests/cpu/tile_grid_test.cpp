@@ -69,7 +69,7 @@ TEST(TileGrid, DeclaredSizesOutsideTheLimits) {
     huge.tile_rows = huge.tile_cols = 65536;
     huge.source_rows = huge.source_cols = 3;
     EXPECT_EQ(problem(huge),
-              "index.json: tile grid 65536x65536 of 32769-sample tiles is empty or larger than 65537 samples per side");
+              "index.json: tile grid 65536x65536 of 32769-sample tiles is empty or larger than 1048577 samples per side");
     EXPECT_EQ(problem(declared(129, 4, 129)),
               "index.json: tile grid 4x4 of 129-sample tiles does not cut the 129^2 square padding a source of 129x129 "
               "samples");

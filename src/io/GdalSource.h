@@ -1,0 +1,29 @@
+#pragma once
+// Private to src/io: what a GDAL source raster means to Overflight, shared by
+// the loader (io/GdalRaster.h) and the windowed tiler (io/WindowedTiler.h):
+// the metres of its vertical unit and the UTM zone a geographic raster is
+// warped to (DESIGN sec. 4).
+#include <ogr_srs_api.h>
+
+#include <memory>
+#include <string>
+
+namespace overflight {
+
+struct SrsCloser {
+    void operator()(OGRSpatialReferenceH s) const { if (s) OSRDestroySpatialReference(s); }
+};
+using Srs = std::unique_ptr<void, SrsCloser>;
+
+// Metres per vertical unit from GDAL's band unit type (free text in
+// practice); `name` receives the unit's name for reports.
+double metres_per_unit(const std::string& unit, std::string& name);
+
+// The CRS as WKT.
+std::string to_wkt(OGRSpatialReferenceH srs);
+
+// The UTM zone of (lon, lat) on the datum of the geographic `src`: EPSG codes
+// for WGS 84, otherwise the datum is kept so no datum shift is introduced.
+Srs utm_for(OGRSpatialReferenceH src, double lon, double lat);
+
+} // namespace overflight

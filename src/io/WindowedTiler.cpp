@@ -1,0 +1,521 @@
+// Based on: Zamri, "Data tiling"; DESIGN sec. 4 (the loader's steps, done
+// per window: io/GdalRaster.cpp); GDAL's windowed raster I/O, warped VRTs
+// and GDALFillNodata.
+#include "io/WindowedTiler.h"
+
+#include "core/Error.h"
+#include "core/Shading.h"
+#include "io/Gdal.h"
+#include "io/GdalSource.h"
+#include "io/HeightMapping.h"
+#include "io/TileFiles.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal_alg.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <mutex>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace overflight {
+
+namespace {
+
+// No-data in our float windows, as the loader marks it (io/GdalRaster.cpp).
+constexpr float kNoData = -1.0e30f;
+// The loader's first no-data search distance (io/GdalRaster.cpp fill_nodata).
+constexpr int kFillDistance = 256;
+
+std::string number(double v, int digits) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    return buf;
+}
+
+// Band 1 of the source in metres: its scale, offset, unit and no-data value.
+struct BandToMetres {
+    bool has_nodata = false;
+    double nodata = 0, scale = 1, offset = 0, unit = 1;
+
+    // The loader's conversion (io/GdalRaster.cpp heights_to_metres): kNoData
+    // for a missing value.
+    float metres(float v) const {
+        if (!std::isfinite(v) || (has_nodata && (double(v) == nodata || float(nodata) == v)) || v == kNoData)
+            return kNoData;
+        return float((double(v) * scale + offset) * unit);
+    }
+};
+
+// Everything a tile needs to know about the source before it is cut.
+struct Plan {
+    std::string path;
+    std::vector<std::string> warp; // GDALWarp options to a VRT; empty: the source's own grid
+    int rows = 0, cols = 0;        // the terrain grid (after any warp)
+    BandToMetres band;
+    bool georeferenced = false;
+    std::array<double, 6> gt{0, 1, 0, 0, 0, 1};
+    std::string wkt;
+    float h_scale = 1;
+    float lo = 0, hi = 0; // valid elevations, metres
+    bool integral = true; // whole metres, kept exact (filled voids rounded)
+    HeightMapping mapping;
+    float world_lo = 0, world_hi = 0; // Terrain::min_height / max_height of the whole
+    std::string checksum;
+};
+
+// A thread's view of the source: the raster, and the warped VRT over it.
+struct Reader {
+    gdal::Dataset source, warped;
+    GDALRasterBandH band = nullptr;
+};
+
+void open_reader(Reader& r, const Plan& plan, bool warped) {
+    if (r.band) return;
+    r.source = gdal::open_raster(plan.path);
+    GDALDatasetH ds = r.source.get();
+    if (warped && !plan.warp.empty()) {
+        std::vector<char*> argv;
+        for (const std::string& a : plan.warp) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        GDALWarpAppOptions* o = GDALWarpAppOptionsNew(argv.data(), nullptr);
+        if (!o) throw Error(plan.path, "cannot set up the reprojection: " + gdal::last_error("bad warp options"));
+        GDALDatasetH src = ds;
+        int usage = 0;
+        CPLErrorReset();
+        r.warped.reset(GDALWarp("", nullptr, 1, &src, o, &usage));
+        GDALWarpAppOptionsFree(o);
+        if (!r.warped) throw Error(plan.path, "cannot reproject: " + gdal::last_error("GDALWarp failed"));
+        ds = r.warped.get();
+    }
+    r.band = GDALGetRasterBand(ds, 1);
+}
+
+// Rows [row0, row0 + rows) x columns [col0, col0 + cols) in metres (kNoData
+// where missing).
+void read_metres(const Reader& r, const Plan& plan, int row0, int col0, int rows, int cols, std::vector<float>& z) {
+    z.resize(std::size_t(rows) * std::size_t(cols));
+    CPLErrorReset();
+    if (GDALRasterIO(r.band, GF_Read, col0, row0, cols, rows, z.data(), cols, rows, GDT_Float32, 0, 0) != CE_None)
+        throw Error(plan.path, "unreadable raster: " + gdal::last_error("read failed"));
+    for (float& v : z) v = plan.band.metres(v);
+}
+
+// FNV-1a 64 over 32-bit words in four interleaved lanes (one dependency chain
+// per lane), then over the lanes.
+constexpr std::uint64_t kFnvBasis = 1469598103934665603ull, kFnvPrime = 1099511628211ull;
+std::uint64_t fnv(std::uint64_t h, const void* p, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * kFnvPrime;
+    return h;
+}
+std::uint64_t row_hash(const float* z, int n) {
+    std::uint64_t lane[4] = {kFnvBasis, kFnvBasis + 1, kFnvBasis + 2, kFnvBasis + 3};
+    for (int j = 0; j < n; ++j) {
+        std::uint32_t w;
+        std::memcpy(&w, z + j, 4);
+        lane[j & 3] = (lane[j & 3] ^ w) * kFnvPrime;
+    }
+    return fnv(kFnvBasis, lane, sizeof lane);
+}
+
+// The terrain grid: the source's, or the loader's warp of it to square
+// metric cells (io/GdalRaster.cpp to_square_metric_cells).
+void plan_grid(Plan& plan, GDALDatasetH src) {
+    double g[6];
+    const bool has_gt = GDALGetGeoTransform(src, g) == CE_None;
+    const bool real_gt = has_gt && !(g[0] == 0 && g[1] == 1 && g[2] == 0 && g[3] == 0 && g[4] == 0 && g[5] == 1);
+    OGRSpatialReferenceH srs = real_gt ? GDALGetSpatialRef(src) : nullptr;
+    plan.rows = GDALGetRasterYSize(src);
+    plan.cols = GDALGetRasterXSize(src);
+    plan.georeferenced = real_gt;
+    if (real_gt) std::copy(g, g + 6, plan.gt.begin());
+    const char* wkt = GDALGetProjectionRef(src);
+    plan.wkt = wkt ? wkt : "";
+    double hs = 1.0;
+    if (srs && OSRIsGeographic(srs)) {
+        const double lon = g[0] + g[1] * plan.cols * 0.5 + g[2] * plan.rows * 0.5;
+        const double lat = g[3] + g[4] * plan.cols * 0.5 + g[5] * plan.rows * 0.5;
+        plan.warp = {"-t_srs", to_wkt(utm_for(srs, lon, lat).get())};
+    } else if (real_gt) {
+        const double px = std::hypot(g[1], g[4]), py = std::hypot(g[2], g[5]);
+        if (g[2] != 0 || g[4] != 0 || std::abs(px - py) > 1e-6 * std::max(px, py)) {
+            const double res = std::min(px, py);
+            plan.warp = {"-tr", number(res, 17), number(res, 17)};
+        }
+        hs = px;
+    }
+    if (!plan.warp.empty()) {
+        plan.warp.insert(plan.warp.end(), {"-of", "VRT", "-r", "bilinear", "-dstnodata", number(kNoData, 9), "-ot",
+                                           "Float32", "-wo", "INIT_DEST=NO_DATA"});
+        Reader r;
+        open_reader(r, plan, true);
+        GDALDatasetH w = r.warped.get();
+        plan.rows = GDALGetRasterYSize(w);
+        plan.cols = GDALGetRasterXSize(w);
+        GDALGetGeoTransform(w, plan.gt.data());
+        const char* ww = GDALGetProjectionRef(w);
+        plan.wkt = ww ? ww : "";
+        plan.georeferenced = true;
+        hs = std::abs(plan.gt[1]);
+    }
+    if (srs) {
+        Srs target(OSRNewSpatialReference(plan.wkt.c_str()));
+        if (target && OSRIsProjected(target.get())) hs *= OSRGetLinearUnits(target.get(), nullptr);
+    }
+    if (const std::string problem = horizontal_scale_problem(plan.rows, plan.cols, hs); !problem.empty())
+        throw Error(plan.path, "pixel size: " + problem);
+    plan.h_scale = float(hs);
+}
+
+// Pass 1: elevation range, no-data count, wholeness and checksum, over the
+// source in strips of rows read in parallel (each thread its own handle).
+void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::function<void(double)>& progress) {
+    const int rows = GDALGetRasterYSize(src), cols = GDALGetRasterXSize(src);
+    const int threads = tbb::this_task_arena::max_concurrency();
+    const std::int64_t strip_bytes = std::max<std::int64_t>(budget / 8 / threads, std::int64_t(cols) * 4);
+    const int strip = int(std::clamp<std::int64_t>(strip_bytes / (std::int64_t(cols) * 4), 1, 256));
+    const int strips = (rows + strip - 1) / strip;
+    std::vector<std::uint64_t> hashes(std::size_t(rows), 0);
+    struct Partial {
+        float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+        bool integral = true;
+        long long voids = 0;
+    };
+    tbb::enumerable_thread_specific<Reader> readers;
+    tbb::enumerable_thread_specific<Partial> partials;
+    std::atomic<int> done{0};
+    std::mutex progress_mutex;
+    tbb::parallel_for(0, strips, [&](int s) {
+        Reader& r = readers.local();
+        open_reader(r, plan, false);
+        Partial& p = partials.local();
+        const int row0 = s * strip, n = std::min(strip, rows - row0);
+        std::vector<float> z;
+        read_metres(r, plan, row0, 0, n, cols, z);
+        for (int i = 0; i < n; ++i) {
+            const float* row = z.data() + std::size_t(i) * std::size_t(cols);
+            for (int j = 0; j < cols; ++j) {
+                const float v = row[j];
+                if (v == kNoData) {
+                    ++p.voids;
+                    continue;
+                }
+                if (!(std::abs(v) <= float(kWorldLimit)))
+                    throw Error(plan.path, "row " + std::to_string(row0 + i) + ", column " + std::to_string(j) + ": " +
+                                               elevation_problem(double(v)) +
+                                               " (not a terrain height; is the no-data value set?)");
+                p.lo = std::min(p.lo, v);
+                p.hi = std::max(p.hi, v);
+                // Within kWorldLimit, so the conversion is exact and defined.
+                p.integral = p.integral && v == float(std::int32_t(v));
+            }
+            hashes[std::size_t(row0 + i)] = row_hash(row, cols);
+        }
+        const int d = ++done;
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        progress(double(d) / strips);
+    });
+    Partial all;
+    for (const Partial& p : partials) {
+        all.lo = std::min(all.lo, p.lo);
+        all.hi = std::max(all.hi, p.hi);
+        all.integral = all.integral && p.integral;
+        all.voids += p.voids;
+    }
+    if (all.voids == std::int64_t(rows) * cols) throw Error(plan.path, "raster is entirely no-data");
+    plan.lo = all.lo;
+    plan.hi = all.hi;
+    plan.integral = all.integral && plan.warp.empty();
+    plan.mapping = choose_height_mapping(plan.lo, plan.hi, plan.integral);
+    std::vector<std::uint16_t> ends;
+    quantise_heights({plan.lo, plan.hi}, plan.mapping, ends);
+    plan.world_lo = plan.mapping.v_scale * float(ends[0]) + plan.mapping.y_offset;
+    plan.world_hi = plan.mapping.v_scale * float(ends[1]) + plan.mapping.y_offset;
+    std::uint64_t h = kFnvBasis;
+    const double header[] = {double(plan.rows), double(plan.cols), plan.h_scale, plan.mapping.v_scale,
+                             plan.mapping.y_offset, plan.gt[0], plan.gt[1], plan.gt[2], plan.gt[3], plan.gt[4], plan.gt[5]};
+    h = fnv(h, header, sizeof header);
+    h = fnv(h, hashes.data(), hashes.size() * sizeof(std::uint64_t));
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    plan.checksum = buf;
+}
+
+// The samples of tile (r, c) and its apron, plus one sample around them, as a
+// window of the terrain (heights and colors) with no-data filled.
+struct CutWindow {
+    Terrain samples;
+    int row0, col0;
+};
+
+CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int r, int c) {
+    const int S = g.stride();
+    // The apron is one sample beyond the tile; the colors of the tile's
+    // samples read one sample around each.
+    const int r0 = std::max(0, r * S - 1), r1 = std::min(plan.rows - 1, r * S + S + 1);
+    const int c0 = std::max(0, c * S - 1), c1 = std::min(plan.cols - 1, c * S + S + 1);
+    const int h = r1 - r0 + 1, w = c1 - c0 + 1;
+    std::vector<float> z;
+    read_metres(rd, plan, r0, c0, h, w, z);
+    if (std::find(z.begin(), z.end(), kNoData) != z.end()) {
+        // The fill of a sample reads only the samples within the search
+        // distance, so this wider window fills the core as the whole raster would.
+        const int d = std::min(kFillDistance, std::max(plan.rows, plan.cols));
+        const int br0 = std::max(0, r0 - d), br1 = std::min(plan.rows - 1, r1 + d);
+        const int bc0 = std::max(0, c0 - d), bc1 = std::min(plan.cols - 1, c1 + d);
+        const int bh = br1 - br0 + 1, bw = bc1 - bc0 + 1;
+        std::vector<float> big;
+        read_metres(rd, plan, br0, bc0, bh, bw, big);
+        gdal::Dataset mem = gdal::create_mem(plan.path, bw, bh, 1, GDT_Float32);
+        GDALRasterBandH band = GDALGetRasterBand(mem.get(), 1);
+        GDALSetRasterNoDataValue(band, kNoData);
+        CPLErrorReset();
+        if (GDALRasterIO(band, GF_Write, 0, 0, bw, bh, big.data(), bw, bh, GDT_Float32, 0, 0) != CE_None ||
+            GDALFillNodata(band, nullptr, double(d), 0, 0, nullptr, nullptr, nullptr) != CE_None ||
+            GDALRasterIO(band, GF_Read, c0 - bc0, r0 - br0, w, h, z.data(), w, h, GDT_Float32, 0, 0) != CE_None)
+            throw Error(plan.path, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
+        for (float& v : z) {
+            // Beyond the search distance: the lowest elevation, never a spike
+            // (the loader searches the whole raster there first).
+            if (v == kNoData) v = plan.lo;
+            if (plan.integral) v = std::round(v);
+        }
+    }
+    CutWindow cw{Terrain(h, w, plan.h_scale, plan.mapping.v_scale, plan.mapping.y_offset), r0, c0};
+    quantise_heights(z, plan.mapping, cw.samples.heights());
+    for (int i = 0; i < h; ++i)
+        for (int j = 0; j < w; ++j)
+            cw.samples.color(i, j) = shaded_color(cw.samples, i, j, plan.world_lo, plan.world_hi, 0.0f);
+    return cw;
+}
+
+// Peak bytes of one tile in flight: the widened float window and GDAL's copy
+// of it for the fill, the tile's samples, colors, d2, encoded files.
+std::int64_t bytes_per_tile(const Plan& plan, int tile_size) {
+    const std::int64_t side = std::min<std::int64_t>(tile_size + 2 + 2 * kFillDistance, std::max(plan.rows, plan.cols));
+    return 12 * side * side + 48 * std::int64_t(tile_size) * tile_size + (16 << 20);
+}
+
+// The tile grid of the planned terrain; Error(path, ...) when it is too large.
+TileGrid grid_of(const Plan& plan, int tile_size) {
+    try {
+        return sized_tile_grid(plan.rows, plan.cols, tile_size, plan.h_scale, plan.mapping.v_scale, plan.mapping.y_offset);
+    } catch (const Error& e) {
+        if (e.subject() != "source") throw;
+        throw Error(plan.path, e.problem());
+    }
+}
+
+// How many tiles may be in flight: half the bound is theirs (a quarter is
+// GDAL's block cache, the rest the survey's strips and the index).
+int workers_within(const Plan& plan, int tile_size, std::int64_t budget) {
+    const std::int64_t per_tile = bytes_per_tile(plan, tile_size), for_tiles = budget / 2;
+    if (per_tile > for_tiles)
+        throw Error("memory bound", std::to_string(budget >> 20) + " MiB cannot hold one " + std::to_string(tile_size) +
+                                        "-sample tile's window (about " + std::to_string(2 * per_tile >> 20) +
+                                        " MiB needed); give more or use a smaller --tile-size");
+    return int(std::min<std::int64_t>(tbb::this_task_arena::max_concurrency(), for_tiles / per_tile));
+}
+
+} // namespace
+
+TileWriteReport tile_raster_in_windows(const std::string& path, const std::string& dir,
+                                       const WindowedTileOptions& options) {
+    gdal::ensure_initialised();
+    const TileWriteOptions& o = options.tile;
+    const std::int64_t budget = options.memory_bytes;
+    // GDAL's block cache holds the strips of the source rows the tiles in
+    // flight read, so that each is decompressed about once.
+    GDALSetCacheMax64(budget / 4);
+    const bool progress_bar = o.terminal_progress && ::isatty(2);
+    std::mutex progress_mutex;
+    const auto progress = [&](double f) {
+        if (progress_bar) GDALTermProgress(f, nullptr, nullptr);
+    };
+
+    Plan plan;
+    plan.path = path;
+    {
+        gdal::Dataset src = gdal::open_raster(path);
+        const int rows = GDALGetRasterYSize(src.get()), cols = GDALGetRasterXSize(src.get());
+        if (rows < 2 || cols < 2)
+            throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) +
+                                  ", a terrain needs at least 2x2 samples");
+        GDALRasterBandH band = GDALGetRasterBand(src.get(), 1);
+        int has = 0;
+        plan.band.nodata = GDALGetRasterNoDataValue(band, &has);
+        plan.band.has_nodata = has != 0;
+        double v = GDALGetRasterScale(band, &has);
+        plan.band.scale = has && v != 0 ? v : 1.0;
+        v = GDALGetRasterOffset(band, &has);
+        plan.band.offset = has ? v : 0.0;
+        const char* unit = GDALGetRasterUnitType(band);
+        std::string unit_name;
+        plan.band.unit = metres_per_unit(unit ? unit : "", unit_name);
+        plan_grid(plan, src.get());
+        // Sizes and memory are checked before the source is read.
+        const TileGrid sized = grid_of(plan, o.tile_size);
+        workers_within(plan, sized.tile_size, budget);
+        const int tiles = sized.tile_rows * sized.tile_cols;
+        survey(plan, src.get(), budget, [&](double f) {
+            progress(0.1 * f);
+            // A stop asked for while the source is surveyed (it may take minutes).
+            if (o.on_tile && !o.on_tile(0, tiles)) throw Error(dir, "interrupted");
+        });
+    }
+
+    TileWriteReport report;
+    TileIndex& ix = report.index;
+    ix.grid = grid_of(plan, o.tile_size);
+    const TileGrid& g = ix.grid;
+    ix.padded_size = int(g.padded_rows());
+    ix.source = path;
+    ix.checksum = plan.checksum;
+    ix.georeferenced = plan.georeferenced;
+    ix.crs_wkt = plan.georeferenced ? plan.wkt : std::string();
+    if (plan.georeferenced)
+        ix.geotransform = plan.gt;
+    else
+        ix.geotransform = {-0.5 * g.h_scale, g.h_scale, 0, 0.5 * g.h_scale, 0, -g.h_scale}; // as plan_index
+    ix.apron = true;
+    ix.levels = o.measures.available() ? g.coarsest_level() : 0;
+    ix.grid.d2_min_resolution = ix.levels > 0 ? o.measures.min_resolution : 0.0;
+    const int f = overview_stride(plan.rows, plan.cols, o.overview_max_side);
+    if (f > 1) {
+        ix.overview_stride = f;
+        ix.overview_rows = (plan.rows - 2) / f + 2;
+        ix.overview_cols = (plan.cols - 2) / f + 2;
+    }
+
+    const int workers = workers_within(plan, g.tile_size, budget);
+
+    const TilePart part = options.part;
+    const auto [first_row, end_row] = part_tile_rows(g.tile_rows, part);
+    const std::string own_prefix =
+        "." + std::string(kPartPrefix) + std::to_string(part.index) + "-of-" + std::to_string(part.count);
+    prepare_folder(dir, [&](const std::string& name) {
+        if (part.count == 1) return true;
+        int r = -1;
+        if (name.rfind("." + own_prefix, 0) == 0) return true; // a temporary of its record
+        return std::sscanf(name.c_str(), ".r%d_c", &r) == 1 && r >= first_row && r < end_row;
+    });
+    const bool resume = resumable(dir, ix);
+    ix.complete = false;
+    write_index(dir, ix);
+
+    PartRecord rec;
+    rec.part = part;
+    rec.checksum = ix.checksum;
+    rec.tile_size = g.tile_size;
+    rec.first_row = first_row;
+    rec.end_row = end_row;
+    const std::size_t n = std::size_t(end_row - first_row) * std::size_t(g.tile_cols);
+    rec.min_height.assign(n, 0.0f);
+    rec.max_height.assign(n, 0.0f);
+    rec.roughness.assign(ix.levels > 0 ? n : 0, {});
+    if (f > 1) {
+        std::tie(rec.overview_first, rec.overview_end) = part_overview_rows(ix, first_row, end_row);
+        const std::size_t m = std::size_t(rec.overview_end - rec.overview_first) * std::size_t(ix.overview_cols);
+        rec.overview_heights.assign(m, 0);
+        rec.overview_rgb.assign(3 * m, 0);
+    }
+
+    tbb::enumerable_thread_specific<Reader> readers;
+    std::atomic<int> written{0}, skipped{0}, empty{0};
+    std::atomic<bool> stop{false};
+    int done = 0;
+    const int total = int(n);
+    const int S = g.stride();
+    const auto cut = [&](int r, int c) {
+        std::error_code ec;
+        if (!g.present(r, c)) {
+            ++empty;
+            for (const TileFile file : {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2})
+                fs::remove(tile_path(dir, r, c, file), ec);
+            return;
+        }
+        Reader& rd = readers.local();
+        open_reader(rd, plan, true);
+        const CutWindow cw = cut_window(rd, plan, g, r, c);
+        const TerrainWindow window{cw.samples, cw.row0, cw.col0};
+        const TileSamples tile = cut_tile(window, g, r, c);
+        const std::size_t k = std::size_t(r - first_row) * std::size_t(g.tile_cols) + std::size_t(c);
+        if (ix.levels > 0) rec.roughness[k] = o.measures.roughness(tile.samples);
+        if (ix.levels == 0) fs::remove(tile_path(dir, r, c, TileFile::D2), ec);
+        const TileContent content(dir, ix, r, c, tile, cut_apron(window, g, r, c), o.measures);
+        if (resume && content.on_disk()) {
+            ++skipped;
+        } else {
+            content.write();
+            ++written;
+        }
+        const auto [lo_raw, hi_raw] = std::minmax_element(tile.samples.heights().begin(), tile.samples.heights().end());
+        const float a = tile_world_height(g, *lo_raw), b = tile_world_height(g, *hi_raw);
+        rec.min_height[k] = std::min(a, b);
+        rec.max_height[k] = std::max(a, b);
+        if (f > 1) {
+            // The overview samples whose source sample this tile owns (the
+            // tile row and column holding it; the last holds the grid's last).
+            const int ov_cols = ix.overview_cols;
+            const std::size_t m = rec.overview_heights.size();
+            for (int i = std::max(rec.overview_first, r * S / f - 1); i < rec.overview_end && i <= (r + 1) * S / f + 1; ++i) {
+                const int si = std::min(i * f, g.source_rows - 1);
+                if (std::min(si / S, g.tile_rows - 1) != r) continue;
+                for (int j = std::max(0, c * S / f - 1); j < ov_cols && j <= (c + 1) * S / f + 1; ++j) {
+                    const int sj = std::min(j * f, g.source_cols - 1);
+                    if (std::min(sj / S, g.tile_cols - 1) != c) continue;
+                    const std::size_t at = std::size_t(i - rec.overview_first) * std::size_t(ov_cols) + std::size_t(j);
+                    rec.overview_heights[at] = tile.samples.raw(si - r * S, sj - c * S);
+                    Rgb8 col = tile.samples.color(si - r * S, sj - c * S);
+                    if (si != i * f || sj != j * f)
+                        col = Rgb8{std::uint8_t(col.r / 2), std::uint8_t(col.g / 2), std::uint8_t(col.b / 2)};
+                    rec.overview_rgb[at] = col.r;
+                    rec.overview_rgb[m + at] = col.g;
+                    rec.overview_rgb[2 * m + at] = col.b;
+                }
+            }
+        }
+    };
+    tbb::task_arena arena(std::max(1, workers));
+    for (int r = first_row; r < end_row && !stop; ++r)
+        arena.execute([&] {
+            tbb::parallel_for(0, g.tile_cols, [&](int c) {
+                if (stop) return;
+                cut(r, c);
+                std::lock_guard<std::mutex> lock(progress_mutex);
+                ++done;
+                progress(0.1 + 0.9 * double(done) / total);
+                if (o.on_tile && !o.on_tile(done, total)) stop = true;
+            });
+        });
+    if (stop) throw Error(dir, "interrupted");
+    report.written = written;
+    report.skipped = skipped;
+    report.empty = empty;
+
+    write_part_record(dir, rec);
+    auto [merged, complete] = merge_tile_parts(dir, part.count, false);
+    if (complete) {
+        ix = std::move(merged);
+        if (part.count == 1) {
+            std::error_code ec;
+            fs::remove(fs::path(dir) / (own_prefix + ".json"), ec);
+            fs::remove(fs::path(dir) / (own_prefix + ".overview"), ec);
+        }
+    }
+    return report;
+}
+
+} // namespace overflight

@@ -1,0 +1,64 @@
+#pragma once
+// `overflight tile` for a raster of any size: the source is never held
+// whole. Each tile (with its apron) is made from a GDAL window read, in
+// parallel over tiles (oneTBB), so that memory stays within a bound whatever
+// the source size; it writes the same directory as write_tile_directory()
+// over load_gdal_raster() (io/TileDirectory.h, io/GdalRaster.h).
+//
+// Based on: Zamri, "Data tiling" (the tiles); DESIGN sec. 4 (metres,
+// reprojection of geographic rasters to UTM, no-data filling, the 16-bit
+// height mapping), done per window:
+//   1. a pass over the source in strips of rows finds the elevation range
+//      (the height mapping and the colour ramp need the whole range), the
+//      no-data count and a checksum;
+//   2. each tile reads the window of its samples and apron plus one sample
+//      (the hill shading's 3x3); a window holding no-data is read again with
+//      the no-data search distance (256 samples) around it and filled there
+//      by GDALFillNodata as the loader fills the whole raster.
+// What equals the in-memory tiler, and what does not:
+//   - a source on square cells of a projected CRS (or none) without no-data:
+//     every tile, apron, d2, overview file byte-identical;
+//   - with no-data within 256 samples of valid data: the same (the fill of a
+//     sample depends only on the samples within its search distance);
+//     voids wider than that, which the loader fills by a second search over
+//     the whole raster, get the lowest elevation of the source here (a
+//     window cannot see the whole raster, and every tile must give a shared
+//     sample the same value);
+//   - a geographic raster, or one with rotated or non-square cells, is read
+//     through a warped VRT (GDALWarp to VRT, the loader's options) whose
+//     blocks are warped on a fixed grid, so a sample's value does not depend
+//     on which tile reads it; the height mapping spans the source's range
+//     (the warped values lie within it) rather than the warped one. Heights
+//     differ from the in-memory warp by GDAL's approximate transformer
+//     (0.125 pixel) on another chunking and by that mapping.
+//   - index.json's checksum is FNV-1a 64 of the source's elevations in
+//     metres (row by row) and the plan, not of the loaded terrain: it is
+//     known before any tile is cut, as a run in parts needs it.
+#include "io/TileDirectory.h"
+#include "io/TileParts.h"
+
+#include <cstdint>
+#include <string>
+
+namespace overflight {
+
+struct WindowedTileOptions {
+    TileWriteOptions tile;
+    // Peak memory of the run (windows, GDAL's block cache, the per-row
+    // statistics; not the index of a grid of millions of tiles).
+    std::int64_t memory_bytes = std::int64_t(1) << 30;
+    TilePart part; // the share of the tile rows to write (io/TileParts.h)
+};
+
+// Tiles the raster at `path` into `dir`, part options.part of the run; the
+// last part to finish (or the only one) writes the overview and the complete
+// index.json. Throws Error(path, ...) for a source the loader refuses (as
+// load_gdal_raster, except that no side limit applies but the tile grid's,
+// kMaxTiledSide), Error("--memory-mib", ...) when the bound cannot hold one
+// tile's window, Error(dir, "interrupted") when options.tile.on_tile
+// returned false (it is also called with 0 tiles done while the source is
+// surveyed), and the write errors of write_tile_directory.
+TileWriteReport tile_raster_in_windows(const std::string& path, const std::string& dir,
+                                       const WindowedTileOptions& options);
+
+} // namespace overflight

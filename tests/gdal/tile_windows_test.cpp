@@ -1,0 +1,275 @@
+// `overflight tile` on a raster file reads it in windows (io/WindowedTiler.h):
+// the same tiles as tiling the loaded terrain, byte for byte, on a
+// projected DEM with voids and on a real DEM; a geographic raster within a
+// bound of the loaded one; N = 3 parts run by GNU parallel (the README's
+// example) equal to one run; a 100000^2 raster tiled within a memory bound
+// under RLIMIT_AS; one-line errors beyond the limits.
+#include "RestrictedRun.h"
+#include "TestCameras.h"
+#include "TestSupport.h"
+
+#include "core/Error.h"
+#include "io/LoadTerrain.h"
+#include "io/TileDirectory.h"
+#include "core/MeshArrays.h"
+#include "lod/TileSet.h"
+
+#include <gdal.h>
+#include <gtest/gtest.h>
+#include <ogr_srs_api.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace overflight;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A cols x rows Int16 GeoTIFF of smooth hills on 30 m square cells of UTM
+// 10N (or, geographic, on 0.0003 degree cells), no-data -32768 in `holes`
+// squares of 9x9 samples.
+void write_dem(const std::string& path, int rows, int cols, bool geographic, int holes) {
+    GDALAllRegister();
+    const char* options[] = {"COMPRESS=DEFLATE", nullptr};
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), cols, rows, 1, GDT_Int16,
+                                 const_cast<char**>(options));
+    ASSERT_NE(ds, nullptr);
+    OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+    OSRImportFromEPSG(srs, geographic ? 4326 : 32610);
+    GDALSetSpatialRef(ds, srs);
+    OSRDestroySpatialReference(srs);
+    double gt[6] = {500000, 30, 0, 5200000, 0, -30};
+    if (geographic) {
+        const double g[6] = {-121.9, 0.0003, 0, 46.9, 0, -0.0003};
+        std::copy(g, g + 6, gt);
+    }
+    GDALSetGeoTransform(ds, gt);
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    GDALSetRasterNoDataValue(band, -32768);
+    std::vector<std::int16_t> z(std::size_t(rows) * std::size_t(cols));
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j)
+            z[std::size_t(i) * std::size_t(cols) + std::size_t(j)] =
+                std::int16_t(800 + 300 * std::sin(i * 0.05) * std::cos(j * 0.037) + 2 * ((i * 7 + j * 13) % 11));
+    for (int h = 0; h < holes; ++h) {
+        const int ci = (h * 53 + 11) % rows, cj = (h * 97 + 5) % cols;
+        for (int i = std::max(0, ci - 4); i <= std::min(rows - 1, ci + 4); ++i)
+            for (int j = std::max(0, cj - 4); j <= std::min(cols - 1, cj + 4); ++j)
+                z[std::size_t(i) * std::size_t(cols) + std::size_t(j)] = -32768;
+    }
+    ASSERT_EQ(GDALRasterIO(band, GF_Write, 0, 0, cols, rows, z.data(), cols, rows, GDT_Int16, 0, 0), CE_None);
+    GDALClose(ds);
+}
+
+// Tiles `path` from the loaded terrain, as `tile` did before it read windows.
+void tile_in_memory(const std::string& path, const std::string& dir, int tile_size) {
+    TileWriteOptions o;
+    o.tile_size = tile_size;
+    o.measures = rottger_tile_measures();
+    write_tile_directory(load_terrain(path), dir, o);
+}
+
+// index.json without its checksum line (the windowed tiler's checksum is of
+// the source, the in-memory one of the loaded terrain).
+std::string index_without_checksum(const std::string& dir) {
+    std::string text = test::read_file_text(dir + "/index.json");
+    const std::size_t at = text.find("\"checksum\"");
+    return at == std::string::npos ? text : text.erase(at, text.find('\n', at) - at);
+}
+
+// Every file of `ref` is in `dir` with the same bytes (index.json: but its
+// checksum when `checksums` is false); `dir` holds nothing else but hidden
+// part records.
+void expect_same_files(const std::string& dir, const std::string& ref, bool checksums) {
+    int files = 0;
+    for (const auto& e : fs::directory_iterator(ref)) {
+        const std::string name = e.path().filename().string();
+        ++files;
+        if (name == "index.json" && !checksums)
+            EXPECT_EQ(index_without_checksum(dir), index_without_checksum(ref));
+        else
+            EXPECT_EQ(test::read_file_text(dir + "/" + name), test::read_file_text(e.path().string())) << name;
+    }
+    EXPECT_GT(files, 4);
+    for (const auto& e : fs::directory_iterator(dir)) {
+        const std::string name = e.path().filename().string();
+        EXPECT_TRUE(fs::exists(fs::path(ref) / name) || name.rfind(".part-", 0) == 0) << name;
+    }
+}
+
+} // namespace
+
+TEST(TileWindows, ProjectedDemWithVoidsGivesTheSameTiles) {
+    test::ScratchDir scratch;
+    const std::string dem = scratch / "dem.tif";
+    write_dem(dem, 300, 200, false, 12);
+    for (const int size : {33, 129}) {
+        const std::string ref = scratch / ("ref" + std::to_string(size)), dir = scratch / ("win" + std::to_string(size));
+        tile_in_memory(dem, ref, size);
+        const auto r = test::run_overflight("tile '" + dem + "' -o '" + dir + "' --tile-size " + std::to_string(size));
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        expect_same_files(dir, ref, false);
+    }
+}
+
+// A re-run keeps the finished tiles and rewrites a broken one, ending
+// byte-identical; a stop while tiling leaves an index readers refuse.
+TEST(TileWindows, ReRunResumes) {
+    test::ScratchDir scratch;
+    const std::string dem = scratch / "dem.tif", ref = scratch / "ref", dir = scratch / "t";
+    write_dem(dem, 200, 150, false, 4);
+    const std::string args = "tile '" + dem + "' --tile-size 65 -o ";
+    ASSERT_EQ(test::run_overflight(args + "'" + ref + "'").exit_code, 0);
+    fs::copy(ref, dir);
+    std::ofstream(dir + "/r1_c1.tif", std::ios::trunc) << "garbage";
+    const auto again = test::run_overflight(args + "'" + dir + "'");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_NE(again.out.find("1 written, 11 already done, 4 without data"), std::string::npos) << again.out;
+    expect_same_files(dir, ref, true);
+}
+
+TEST(TileWindows, RealDemGivesTheSameTiles) {
+    OVERFLIGHT_SHARED_FILE(path, "usgs-dem/SainteHelens.dem");
+    test::ScratchDir scratch;
+    tile_in_memory(path, scratch / "ref", 65);
+    const auto r = test::run_overflight("tile '" + path + "' -o '" + (scratch / "win") + "' --tile-size 65");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_same_files(scratch / "win", scratch / "ref", false);
+}
+
+// Warped per block of a VRT rather than whole: the same grid, heights within
+// a fraction of the relief of the loaded terrain's.
+TEST(TileWindows, GeographicDemStaysCloseToTheLoadedOne) {
+    test::ScratchDir scratch;
+    const std::string dem = scratch / "geo.tif";
+    write_dem(dem, 240, 260, true, 0);
+    tile_in_memory(dem, scratch / "ref", 65);
+    const auto r = test::run_overflight("tile '" + dem + "' -o '" + (scratch / "win") + "' --tile-size 65");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const DataSet a = load_tile_directory(scratch / "ref"), b = load_tile_directory(scratch / "win");
+    ASSERT_EQ(a.terrain.rows(), b.terrain.rows());
+    ASSERT_EQ(a.terrain.cols(), b.terrain.cols());
+    EXPECT_EQ(a.info.geotransform, b.info.geotransform);
+    double worst = 0;
+    long long close = 0;
+    for (int i = 0; i < a.terrain.rows(); ++i)
+        for (int j = 0; j < a.terrain.cols(); ++j) {
+            const double d = std::abs(double(a.terrain.sample_height(i, j)) - double(b.terrain.sample_height(i, j)));
+            worst = std::max(worst, d);
+            close += d <= 1.0;
+        }
+    EXPECT_LE(worst, 30.0); // of a 600 m relief
+    EXPECT_GE(double(close) / double(a.terrain.heights().size()), 0.99);
+}
+
+// The README's example: GNU parallel runs three parts; the directory equals
+// one run's, byte for byte, and `--merge` finds nothing left to do.
+TEST(TileWindows, ThreePartsUnderGnuParallelEqualOneRun) {
+    if (std::system("command -v parallel >/dev/null 2>&1") != 0) GTEST_SKIP() << "GNU parallel is not installed";
+    test::ScratchDir scratch;
+    const std::string dem = scratch / "dem.tif", one = scratch / "one", parts = scratch / "parts";
+    write_dem(dem, 700, 900, false, 30);
+    const auto r = test::run_overflight("tile '" + dem + "' -o '" + one + "' --tile-size 65");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string cmd = "parallel --halt now,fail=1 '" + std::string(OVERFLIGHT_EXE) + "' tile '" + dem + "' -o '" +
+                            parts + "' --tile-size 65 --part {}/3 ::: 1 2 3 >/dev/null";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    expect_same_files(parts, one, true);
+    const auto merged = test::run_overflight("tile --merge '" + parts + "'");
+    ASSERT_EQ(merged.exit_code, 0) << merged.err;
+    expect_same_files(parts, one, true);
+
+    // A part missing: no index readers accept, and --merge names it.
+    const std::string two = scratch / "two";
+    for (const char* k : {"1", "3"})
+        ASSERT_EQ(test::run_overflight("tile '" + dem + "' -o '" + two + "' --tile-size 65 --part " + k + "/3").exit_code, 0);
+    EXPECT_THROW(read_tile_index(two), Error);
+    const auto missing = test::run_overflight("tile --merge '" + two + "'");
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_EQ(missing.err, "overflight: " + two + ": 1 of 3 parts not finished (2); run them with --part K/3\n");
+    ASSERT_EQ(test::run_overflight("tile '" + dem + "' -o '" + two + "' --tile-size 65 --part 2/3").exit_code, 0);
+    expect_same_files(two, one, true);
+}
+
+// A 100000^2 raster (sparse: unwritten blocks read as 0 m, with one written
+// block of hills) beyond the 65537 a terrain may have: one part of it tiled
+// under a 1 GiB address space with --memory-mib 256, the grid in index.json.
+TEST(TileWindows, LargeRasterIsTiledWithinTheMemoryBound) {
+    if (!test::kAddressSpaceCanBeLimited) GTEST_SKIP() << "address space cannot be limited under ASan";
+    test::ScratchDir scratch;
+    const std::string big = scratch / "big.tif", dir = scratch / "t";
+    {
+        GDALAllRegister();
+        const char* options[] = {"SPARSE_OK=TRUE", "TILED=YES", "COMPRESS=DEFLATE", "BIGTIFF=YES", nullptr};
+        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), big.c_str(), 100000, 100000, 1, GDT_Int16,
+                                     const_cast<char**>(options));
+        ASSERT_NE(ds, nullptr);
+        std::vector<std::int16_t> z(256 * 256);
+        for (int i = 0; i < 256; ++i)
+            for (int j = 0; j < 256; ++j) z[std::size_t(i) * 256 + std::size_t(j)] = std::int16_t(100 + i + j);
+        ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 512, 256, 256, 256, z.data(), 256, 256, GDT_Int16, 0, 0),
+                  CE_None);
+        GDALClose(ds);
+    }
+    test::Restrictions limits;
+    limits.address_space_bytes = std::uint64_t(1) << 30;
+    const auto r = test::run_overflight_restricted(
+        "tile '" + big + "' -o '" + dir + "' --tile-size 257 --memory-mib 256 --part 1/512", limits);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("512x512 tiles of 257 samples, 391 written, 0 already done, 121 without data"), std::string::npos) << r.out;
+    const std::string text = test::read_file_text(dir + "/index.json");
+    EXPECT_NE(text.find("\"padded_size\": 131073"), std::string::npos);
+    EXPECT_NE(text.find("\"complete\": false"), std::string::npos);
+    // Tile r0_c2 holds the written block (rows 256..511 of columns 512..767).
+    GDALDatasetH tile = GDALOpen((dir + "/r0_c2.tif").c_str(), GA_ReadOnly);
+    ASSERT_NE(tile, nullptr);
+    std::uint16_t corner[2] = {1, 1};
+    ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(tile, 1), GF_Read, 0, 255, 1, 2, corner, 1, 2, GDT_UInt16, 0, 0), CE_None);
+    GDALClose(tile);
+    EXPECT_EQ(corner[0], 0);   // row 255: 0 m
+    EXPECT_EQ(corner[1], 100); // row 256, column 512: 100 m
+
+    // One tile of 8193^2 samples does not fit 64 MiB: one line naming the option.
+    const auto small = test::run_overflight("tile '" + big + "' -o '" + (scratch / "u") + "' --tile-size 8193 --memory-mib 64");
+    EXPECT_EQ(small.exit_code, 1);
+    EXPECT_EQ(test::line_count(small.err), 1) << small.err;
+    EXPECT_EQ(small.err.rfind("overflight: --memory-mib: ", 0), 0u) << small.err;
+}
+
+// A 70000 x 300 raster pads to 131073^2, beyond the 65537 of a terrain held
+// at once: its directory opens through the overview (at most 2049 per side)
+// and the quadtree over the tiles draws it.
+TEST(TileWindows, DirectoryBeyondOneTerrainOpensLazily) {
+    test::ScratchDir scratch;
+    const std::string dem = scratch / "long.tif", dir = scratch / "t";
+    write_dem(dem, 300, 70000, false, 0);
+    const auto r = test::run_overflight("tile '" + dem + "' -o '" + dir + "' --tile-size 257");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const TileIndex ix = read_tile_index(dir);
+    EXPECT_EQ(ix.padded_size, 131073);
+    const DataSet overview = load_tile_directory_overview(dir);
+    EXPECT_LE(overview.terrain.cols(), 2049);
+    EXPECT_EQ(test::run_overflight("info '" + dir + "'").exit_code, 0);
+    TileSet tiles(ix.grid, tile_directory_loader(dir, ix), std::size_t(256) << 20);
+    const glm::dvec3 eye(35000 * 30.0, 2500.0, 150 * 30.0);
+    MeshArrays mesh;
+    const TileFrameStats stats = tiles.build_mesh(test::camera_at(eye, 90, -20, 40000, 320, 200), 1.0, mesh);
+    EXPECT_GT(stats.triangles, 1000u);
+    EXPECT_FALSE(tiles.visible_tiles().empty());
+}
+
+TEST(TileWindows, RasterBeyondTheTileGridIsRefused) {
+    test::ScratchDir scratch;
+    const std::string wide = scratch / "wide.tif";
+    GDALAllRegister();
+    const char* options[] = {"SPARSE_OK=TRUE", "TILED=YES", nullptr};
+    GDALDatasetH ds =
+        GDALCreate(GDALGetDriverByName("GTiff"), wide.c_str(), 1100000, 2, 1, GDT_Int16, const_cast<char**>(options));
+    ASSERT_NE(ds, nullptr);
+    GDALClose(ds);
+    const auto r = test::run_overflight("tile '" + wide + "' -o '" + (scratch / "t") + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err, "overflight: " + wide + ": 1100000x2 samples pad to more than 1048577 per side, the largest tile grid\n");
+}
