@@ -402,7 +402,10 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
     const int workers = workers_within(plan, g.tile_size, budget);
 
     const TilePart part = options.part;
-    const auto [first_row, end_row] = part_tile_rows(g.tile_rows, part);
+    // Named variables, not a structured binding: lambdas below capture them,
+    // which clang before 16 refuses for bindings (the fuzz build uses clang).
+    const std::pair<int, int> part_rows = part_tile_rows(g.tile_rows, part);
+    const int first_row = part_rows.first, end_row = part_rows.second;
     const std::string own_prefix =
         "." + std::string(kPartPrefix) + std::to_string(part.index) + "-of-" + std::to_string(part.count);
     prepare_folder(dir, [&](const std::string& name) {
