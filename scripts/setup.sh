@@ -5,6 +5,9 @@
 #   OVERFLIGHT_SKIP_INSTALL=1 ...    # build only
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache keys on paths relative to the checkout, so a fresh clone elsewhere
+# (CI) reuses what an earlier build on this machine compiled.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
 
 packages=(
   build-essential cmake ninja-build pkg-config ccache clang libclang-rt-14-dev
