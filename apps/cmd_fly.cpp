@@ -160,7 +160,7 @@ void run_fly(const FlyOptions& o) {
     MethodSettings settings;
     settings.cache_bytes = tile_cache_bytes(o.cache_mib);
     DataSet data = load_terrain_lazily(o.terrain);
-    data.environment = with_looks(o.looks, data.environment);
+    data.environment = with_looks(o.looks, data.environment, data.terrain);
     if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
     MethodContext methods{data.terrain, settings, {}};
     if (is_tile_directory(o.terrain.terrain))
