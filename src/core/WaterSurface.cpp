@@ -13,23 +13,6 @@
 
 namespace overflight {
 
-namespace {
-
-// The four waves: direction (unit), wavelength in cells, slope amplitude
-// a_i |k_i| and angular speed in radians per second. Directions spread so
-// that no crest pattern lines up; the slopes sum to 0.06.
-struct Wave {
-    float dx, dz, cells, slope, speed;
-};
-constexpr Wave kWaves[4] = {
-    {0.80f, 0.60f, 6.1f, 0.020f, 1.1f},
-    {-0.45f, 0.89f, 3.7f, 0.016f, 1.7f},
-    {0.96f, -0.28f, 2.3f, 0.014f, 2.3f},
-    {-0.71f, -0.71f, 1.7f, 0.010f, 2.9f},
-};
-
-} // namespace
-
 float water_fresnel(float cos_incidence) {
     const float c = std::clamp(cos_incidence, 0.0f, 1.0f);
     const float m = 1.0f - c;
@@ -39,7 +22,7 @@ float water_fresnel(float cos_incidence) {
 glm::vec3 water_normal(float x, float z, double time, float cell) {
     // dh/dx of a sin(k d.(x, z) - w t) is a k d_x cos(...): slope d_x cos(...).
     float gx = 0.0f, gz = 0.0f;
-    for (const Wave& w : kWaves) {
+    for (const WaterWave& w : kWaterWaves) {
         const double k = 2.0 * 3.14159265358979323846 / (double(w.cells) * double(cell));
         const double phase = k * (double(w.dx) * x + double(w.dz) * z) - double(w.speed) * time;
         const float c = float(std::cos(phase));
@@ -55,21 +38,25 @@ glm::vec3 water_reflect(const glm::vec3& view, const glm::vec3& normal) {
     return r;
 }
 
-glm::vec3 water_color(const Environment& env, const WaterSample& s) {
+float water_path(float depth, const glm::vec3& view) { return std::max(depth, 0.0f) / std::max(-view.y, 1e-3f); }
+
+WaterLight water_light(const Environment& env, const WaterSample& s) {
     const float fresnel = water_fresnel(-glm::dot(s.view, s.normal));
-    const glm::vec3 light = sample_light(env, glm::vec3(0.0f, 1.0f, 0.0f), true);
-    glm::vec3 body;
+    const glm::vec3 light = env.baked ? glm::vec3(1.0f) : sample_light(env, glm::vec3(0.0f, 1.0f, 0.0f), true);
+    WaterLight out;
+    glm::vec3 own = s.reflected * fresnel; // everything but the bottom
     for (int c = 0; c < 3; ++c) {
         const float t = std::exp(-kWaterAbsorption[c] * std::max(s.path, 0.0f));
-        body[c] = s.bottom[c] * t + kWaterDeep[c] * light[c] * (1.0f - t);
+        own[c] += kWaterDeep[c] * light[c] * (1.0f - t) * (1.0f - fresnel);
+        out.behind[c] = t * (1.0f - fresnel);
     }
-    glm::vec3 color = body + (s.reflected - body) * fresnel;
     const glm::vec3 sun = glm::normalize(env.sun_dir);
-    if (sun.y > 0.0f) {
+    if (sun.y > 0.0f && !env.baked) {
         const float glint = std::max(glm::dot(water_reflect(s.view, s.normal), sun), 0.0f);
-        color += env.sun_color * (fresnel * std::pow(glint, 256.0f));
+        own += env.sun_color * (fresnel * std::pow(glint, 256.0f));
     }
-    return color;
+    out.surface = own / (glm::vec3(1.0f) - out.behind);
+    return out;
 }
 
 double default_water_level(const Terrain& terrain, const Environment& env) {

@@ -14,14 +14,21 @@
 //            "An Inexpensive BRDF Model for Physically-based Rendering",
 //            Eurographics 1994, eq. 24), F0 = 0.02 (water, n = 1.33), cos the
 //            cosine between the view ray and N;
-//   shallows the light from below: the bottom's color seen through a path p
-//            of water (the view ray from the surface to the terrain behind
-//            it), Beer-Lambert T_c = exp(-absorption_c p), mixed with the
-//            deep-water color: body = bottom T + deep light (1 - T), light =
-//            the sun and ambient light of a level surface (core/SunLight.h);
+//   shallows the light from below: the bottom seen through a path p of
+//            water, p = (level - bottom height) / -view.y (the water's depth
+//            under the point, along the view ray), Beer-Lambert
+//            T_c = exp(-absorption_c p), mixed with the deep-water color:
+//            body = bottom T + deep light (1 - T), light = the sun and
+//            ambient light of a level surface (core/SunLight.h);
 //   color    mix(body, reflected, F) + a sun glint sun_color F max(R . L, 0)^256,
 //            `reflected` the color seen along the mirrored ray R (sky or
 //            terrain), then fog or the atmosphere like any terrain point.
+//   As drawn the bottom is the color the renderer already has behind the
+//   water (the terrain under it, fogged to its own distance): with
+//   W_c = T_c (1 - F) the weight of the bottom, the pixel is
+//       mix(fogged(surface), behind, W),  surface = (color - bottom W) / (1 - W),
+//   which a GL blend (ONE, ONE_MINUS_SRC_ALPHA) does and the ray casters do
+//   per pixel (W < 1: F >= F0).
 //
 // No GL, no I/O.
 #include "core/DataSet.h"
@@ -40,6 +47,19 @@ inline constexpr float kWaterAbsorption[3] = {0.30f, 0.08f, 0.05f};
 // The albedo of deep water (what a path long enough to absorb the bottom shows).
 inline constexpr float kWaterDeep[3] = {0.02f, 0.10f, 0.14f};
 
+// The summed sine waves of water_normal: direction (unit), wavelength in
+// cells, slope amplitude a_i |k_i| and angular speed in radians per second.
+// Directions spread so that no crest pattern lines up; the slopes sum to 0.06.
+struct WaterWave {
+    float dx, dz, cells, slope, speed;
+};
+inline constexpr WaterWave kWaterWaves[4] = {
+    {0.80f, 0.60f, 6.1f, 0.020f, 1.1f},
+    {-0.45f, 0.89f, 3.7f, 0.016f, 1.7f},
+    {0.96f, -0.28f, 2.3f, 0.014f, 2.3f},
+    {-0.71f, -0.71f, 1.7f, 0.010f, 2.9f},
+};
+
 // Schlick's Fresnel factor for the cosine of the angle of incidence
 // (clamped to [0, 1]): kWaterF0 at normal incidence, 1 at grazing.
 float water_fresnel(float cos_incidence);
@@ -55,17 +75,25 @@ struct WaterSample {
     glm::vec3 view{0.0f, -1.0f, 0.0f}; // unit, from the eye towards the point
     glm::vec3 normal{0.0f, 1.0f, 0.0f}; // water_normal there
     glm::vec3 reflected{0.0f};          // color along the mirrored ray, [0, 1]
-    glm::vec3 bottom{0.0f};             // the terrain's color under the point, lit, [0, 1]
-    float path = 0.0f;                  // view ray's length in the water (to the terrain behind), >= 0
+    float path = 0.0f;                  // view ray's length in the water to the bottom, >= 0
 };
+
+// What covers a water pixel: the water's own light, fogged like a terrain
+// point, over `behind` (the bottom) weighted by W per channel.
+struct WaterLight {
+    glm::vec3 surface{0.0f}; // (color - bottom W) / (1 - W), before fog, [0, 1] but for the glint
+    glm::vec3 behind{0.0f};  // W = T (1 - F)
+};
+
+// The path of a view ray `view` (unit, downwards) in water of depth `depth` (>= 0).
+float water_path(float depth, const glm::vec3& view);
 
 // The mirrored direction of `view` at `normal`, lifted to at least 0.01
 // above the horizon (a wave never mirrors the ray into the water).
 glm::vec3 water_reflect(const glm::vec3& view, const glm::vec3& normal);
 
-// The surface's color before fog or atmosphere, [0, 1] (may exceed 1 in
-// the glint; callers clamp).
-glm::vec3 water_color(const Environment& env, const WaterSample& s);
+// The surface's light (WaterLight) for one point.
+WaterLight water_light(const Environment& env, const WaterSample& s);
 
 // The level `--water` alone floods to: the data set's sea level
 // (Environment::sea_level) if it gives one; else 0 when the terrain's

@@ -34,14 +34,8 @@ long long WaterPass::apply(const Camera& camera, const Environment& env, Surface
     RayMarcher marcher(t, env);
     marcher.set_colors(colors_);
     const RayMarcher::Frame frame = marcher.frame(camera);
-    const AerialFrame water_air = aerial_frame(env, double(env.water_level));
     const double level = env.water_level;
     const double top = double(t.max_height());
-    auto sample_color = [&](const glm::dvec3& p) {
-        const int row = std::clamp(int(std::lround(p.z / t.h_scale())), 0, t.rows() - 1);
-        const int col = std::clamp(int(std::lround(p.x / t.h_scale())), 0, t.cols() - 1);
-        return colors_ ? (*colors_)[t.index(row, col)] : t.color(row, col);
-    };
     std::atomic<long long> flooded{0};
     tbb::parallel_for(0, camera.height, [&](int row) {
         long long n = 0;
@@ -63,25 +57,22 @@ long long WaterPass::apply(const Camera& camera, const Environment& env, Surface
             WaterSample w;
             w.view = glm::vec3(glm::normalize(d));
             w.normal = water_normal(float(p.x), float(p.z), env.water_time, t.h_scale());
-            if (behind < 1.0f) {
-                const glm::dvec3 q = unproject(frame.inverse_view_projection, nx, ny, double(behind));
-                w.path = float(glm::length(q - p));
-                w.bottom = unit_rgb(sample_color(q));
-            } else {
-                w.path = float(glm::length(b - p));
-            }
+            w.path = water_path(float(level) - t.height_bilinear(float(p.x), float(p.z)), w.view);
             // The mirrored ray, up to where it rises above the highest sample.
             const glm::dvec3 r(water_reflect(w.view, w.normal));
             const double reach = std::min(glm::length(d), (top - level) / r.y + t.h_scale());
             const RayMarcher::Hit hit = marcher.intersect(p, p + reach * r, surface);
             Rgb8 reflected;
             if (!hit.hit) reflected = env.atmosphere ? aerial_sky_rgb(frame.air, r) : sky_color(env, r);
-            else if (env.atmosphere) reflected = aerial_rgb(water_air, hit.surface, hit.point - p);
+            else if (env.atmosphere) reflected = aerial_rgb(frame.air, hit.surface, hit.point - p);
             else reflected = apply_fog(env, hit.surface, fog_factor(env, glm::length(hit.point - p)));
             w.reflected = unit_rgb(reflected);
-            const Rgb8 c = to_rgb8(glm::clamp(water_color(env, w), 0.0f, 1.0f));
-            color.at(col, row) = env.atmosphere ? aerial_rgb(frame.air, c, p - camera.eye)
-                                                : apply_fog(env, c, fog_factor(env, glm::length(p - camera.eye)));
+            const WaterLight light = water_light(env, w);
+            const Rgb8 c = to_rgb8(glm::clamp(light.surface, 0.0f, 1.0f));
+            const Rgb8 own = env.atmosphere ? aerial_rgb(frame.air, c, p - camera.eye)
+                                            : apply_fog(env, c, fog_factor(env, glm::length(p - camera.eye)));
+            Rgb8& pixel = color.at(col, row);
+            pixel = to_rgb8(unit_rgb(own) + (unit_rgb(pixel) - unit_rgb(own)) * light.behind);
             behind = z;
             ++n;
         }

@@ -17,10 +17,10 @@
 //     path (GL_EXP; with the atmosphere, its aerial perspective from the
 //     water point), or the sky along it. The only error is the surface
 //     model's own: no approximation of the march;
-//   - the bottom is the terrain point the image held at that pixel (its lit
-//     sample color, unfogged), the water path the distance from the plane to
-//     it along the ray;
-//   - water_color, then fog or the atmosphere from the eye like any terrain.
+//   - the bottom is what the image held at that pixel (the terrain under the
+//     water, fogged), the water path from the depth under the point
+//     (water_path of the bilinear surface);
+//   - water_light, fogged from the eye like any terrain, over the bottom.
 // The eye below the level sees no water (the plane is drawn from above only).
 // Pixels elsewhere are not touched: without water the images are the caster's.
 //

@@ -41,17 +41,21 @@ TEST(WaterSurface, ShallowsShowTheBottomDeepWaterItsOwnColor) {
     env.sun_color = {0, 0, 0};
     WaterSample s;
     s.view = {0, -1, 0}; // straight down: F = 0.02
-    s.bottom = {1, 1, 1};
     s.reflected = {0, 0, 0};
+    EXPECT_FLOAT_EQ(water_path(2.0f, glm::normalize(glm::vec3(1, -1, 0))), 2.0f * std::sqrt(2.0f));
     s.path = 0.0f;
-    glm::vec3 c = water_color(env, s);
-    EXPECT_NEAR(c.r, 0.98f, 1e-6f); // the bottom, less what is reflected
-    s.path = 10.0f;                 // red: exp(-3) of the bottom left
-    c = water_color(env, s);
-    EXPECT_NEAR(c.r, 0.98f * (std::exp(-3.0f) + kWaterDeep[0] * (1 - std::exp(-3.0f))), 1e-6f);
+    WaterLight w = water_light(env, s);
+    EXPECT_NEAR(w.behind.r, 0.98f, 1e-6f); // the bottom, less what is reflected
+    EXPECT_NEAR(w.surface.r, 0.0f, 1e-6f);
+    s.path = 10.0f; // red: exp(-3) of the bottom left, the deep color for the rest
+    w = water_light(env, s);
+    const float t = std::exp(-3.0f);
+    EXPECT_NEAR(w.behind.r, 0.98f * t, 1e-6f);
+    EXPECT_NEAR(w.surface.r * (1 - w.behind.r), 0.98f * kWaterDeep[0] * (1 - t), 1e-6f);
     s.path = 1e6f; // deep
-    c = water_color(env, s);
-    EXPECT_NEAR(c.b, 0.98f * kWaterDeep[2], 1e-6f);
+    w = water_light(env, s);
+    EXPECT_NEAR(w.behind.b, 0.0f, 1e-6f);
+    EXPECT_NEAR(w.surface.b, 0.98f * kWaterDeep[2], 1e-6f);
 }
 
 TEST(WaterSurface, LevelOutsideTheTerrainIsAOneLineProblem) {
