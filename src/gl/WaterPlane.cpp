@@ -3,6 +3,7 @@
 #include "gl/WaterPlane.h"
 
 #include "core/WaterSurface.h"
+#include "gl/SkyPass.h"
 
 #include <tbb/parallel_for.h>
 
@@ -14,13 +15,6 @@
 namespace overflight::gl {
 
 namespace {
-
-const char* const kWaterVs = R"(
-void main() {
-    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-    gl_Position = vec4(p * 2.0 - 1.0, 1.0, 1.0);
-}
-)";
 
 // WATER_CONSTANTS is replaced by core/WaterSurface.h's constants.
 const char* const kWaterFs = R"(
@@ -164,7 +158,7 @@ void WaterPlane::draw(const Environment& env, double eye_y) {
         }
         std::string fs = kWaterFs;
         fs.replace(fs.find("WATER_CONSTANTS"), 15, water_constants());
-        program_ = make_program("water", kWaterVs, fs.c_str());
+        program_ = make_program("water", kFullScreenVs, fs.c_str());
         vao_ = make_vertex_array();
         std::vector<float> heights(std::size_t(t.rows()) * std::size_t(t.cols()));
         tbb::parallel_for(0, t.rows(), [&](int r) {
