@@ -4,6 +4,7 @@
 #include "OptionValues.h"
 #include "core/Error.h"
 #include "core/SunLight.h"
+#include "core/WaterSurface.h"
 
 #include <cstdio>
 #include <string>
@@ -23,6 +24,10 @@ void add_look_options(CLI::App& cmd, LookArgs& args, const char* what) {
                    "sun position AZIMUTH,ELEVATION in degrees (azimuth clockwise from north, 0..360; elevation "
                    "-90..90, at or below 0: night, ambient light only); default: the data set's sun");
     cmd.add_flag("--shadows", args.shadows, "the terrain casts the sun's shadows (on itself and on the objects)");
+    cmd.add_flag("--water", args.water,
+                 "reflective water at the data set's sea level (the map's sea_level; else 0 when the terrain spans "
+                 "it; else just above its lowest height)");
+    cmd.add_option("--water-level", args.water_level, "reflective water at height H (world units)");
 }
 
 Environment with_looks(const LookArgs& args, Environment env) {
@@ -41,6 +46,19 @@ Environment with_looks(const LookArgs& args, Environment env) {
                          v[1]);
     }
     if (args.shadows) env.shadows = true;
+    return env;
+}
+
+Environment with_looks(const LookArgs& args, Environment env, const Terrain& terrain) {
+    env = with_looks(args, env);
+    if (!args.water && args.water_level.empty()) return env;
+    const char* subject = args.water_level.empty() ? "--water" : "--water-level";
+    const double level = args.water_level.empty()
+                             ? default_water_level(terrain, env)
+                             : parse_list(args.water_level, "--water-level", 1, "a height (world units)")[0];
+    if (const std::string problem = water_level_problem(terrain, level); !problem.empty()) throw Error(subject, problem);
+    env.water = true;
+    env.water_level = float(level);
     return env;
 }
 

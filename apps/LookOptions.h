@@ -18,8 +18,12 @@ struct LookArgs {
     std::string lighting = "sun"; // --lighting: sun (Lambert sun + ambient) or baked (the terrain's colors as they are)
     std::string sun;              // --sun AZIMUTH,ELEVATION (degrees); empty: the data set's sun
     bool shadows = false;         // --shadows: the terrain casts the sun's shadows
+    bool water = false;           // --water: water at the data set's sea level (core/WaterSurface.h)
+    std::string water_level;      // --water-level H (world units): water at H
     // Whether any look was asked for.
-    bool any() const { return atmosphere || lighting != "sun" || !sun.empty() || shadows; }
+    bool any() const {
+        return atmosphere || lighting != "sun" || !sun.empty() || shadows || water || !water_level.empty();
+    }
 };
 
 // Adds the switches to `cmd` (`args` must outlive the parse); `what` ends
@@ -32,5 +36,11 @@ void add_look_options(CLI::App& cmd, LookArgs& args, const char* what = "");
 // unknown mode. A sun at or below the horizon is accepted (ambient light
 // only, everything in the terrain's shadow) with a one-line warning on stderr.
 Environment with_looks(const LookArgs& args, Environment env);
+
+// The same with the water of --water / --water-level over `terrain`
+// (--water-level wins). Throws Error("--water-level", ...) for a value that
+// is not a number or lies outside the terrain's heights, Error("--water", ...)
+// when the data set's sea level does.
+Environment with_looks(const LookArgs& args, Environment env, const Terrain& terrain);
 
 } // namespace overflight::app

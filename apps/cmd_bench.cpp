@@ -343,7 +343,7 @@ void add_bench_command(CLI::App& app) {
         const bool lazy = tiles && std::all_of(methods.begin(), methods.end(),
                                                [](const MethodEntry* m) { return m->reads_tiles; });
         const DataSet data = lazy ? load_terrain_lazily(args->terrain) : load_terrain(args->terrain);
-        const Environment looked = with_looks(args->looks, data.environment); // bad values fail before the work
+        const Environment looked = with_looks(args->looks, data.environment, data.terrain); // bad values fail before the work
         CameraArgs cam_args = args->camera;
         if (!cam_args.far) cam_args.far = 2048.0 * data.terrain.h_scale(); // "far 2048 samples"
         const Camera camera = make_camera(cam_args, data, 1920, 1080);

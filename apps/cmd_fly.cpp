@@ -160,7 +160,7 @@ void run_fly(const FlyOptions& o) {
     MethodSettings settings;
     settings.cache_bytes = tile_cache_bytes(o.cache_mib);
     DataSet data = load_terrain_lazily(o.terrain);
-    data.environment = with_looks(o.looks, data.environment);
+    data.environment = with_looks(o.looks, data.environment, data.terrain);
     if (!o.scene.empty()) data.scene.append(load_scene(o.scene));
     MethodContext methods{data.terrain, settings, {}};
     if (is_tile_directory(o.terrain.terrain))
@@ -223,7 +223,7 @@ void add_fly_command(CLI::App& app) {
         ->transform(decimal<long long>());
     sub->add_option("--press", o->presses, "KEY:FROM-TO holds KEY during frames FROM..TO-1 (keys: accelerate, brake, "
                                            "left, right, fog, lighting, wireframe, detail-up, detail-down, "
-                                           "next-method, screenshot, hud, quit, shadows, sun-later, sun-earlier)")
+                                           "next-method, screenshot, hud, quit, shadows, sun-later, sun-earlier, water)")
         ->take_all();
     sub->add_option("--screenshot", o->screenshot, "With --frames: save the last frame as PNG");
     sub->add_option("--size", o->size, "Window / replay size WxH");

@@ -60,7 +60,7 @@ void add_render_command(CLI::App& app) {
         const double ms_load = ms_since(t0);
         const Camera camera = make_camera(args->camera, data, 1280, 720);
         RenderSession session(data, args->methods, tiles ? args->terrain.terrain : std::string());
-        session.set_environment(with_looks(args->looks, data.environment));
+        session.set_environment(with_looks(args->looks, data.environment, data.terrain));
         // A user's `voxel` view shows the objects: Szenberg's composite.
         if (args->method == "voxel" && session.has_objects()) row = find_terrain_method("voxel+objects");
         std::unique_ptr<TerrainMethod> method = session.create(*row);

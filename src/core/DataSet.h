@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -42,6 +43,14 @@ struct Environment {
     // instead of the GL_EXP fog and the sky gradient above.
     bool atmosphere = false;
     AtmosphereParams air;
+    // A reflective water surface at world height water_level (core/WaterSurface.h),
+    // its waves as they are water_time seconds into the flight.
+    bool water = false;
+    float water_level = 0.0f;
+    double water_time = 0.0;
+    // The data set's sea level (the map's `sea_level` key), if it gives one:
+    // what `--water` alone floods to.
+    std::optional<float> sea_level;
 };
 
 struct VehicleStart {

@@ -91,6 +91,11 @@ CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, 
         counts.terrain_primitives = draw_surface(out, camera, timer, counts);
         frame_.set_terrain_pass(false, false);
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        if (environment.water) {
+            timer.begin_gl("water");
+            water_.draw(environment, camera.eye.y);
+            timer.end_gl();
+        }
     }
 
     // The objects over whatever depth the terrain left: Szenberg's composite.

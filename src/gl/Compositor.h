@@ -16,6 +16,8 @@
 //             GL ("upload") and drawn lit and fogged ("terrain").
 //   Resident  depth cleared, sky, the representation uploaded on first use
 //             (outside any timed step) and drawn ("terrain").
+// Mesh and Resident then get Environment::water's surface (gl/WaterPlane.h,
+// "water"); the ray casters paint their own (raycast/WaterPass.h).
 // Then "objects": the scene's objects and the vehicle, depth-tested.
 //
 // With Environment::shadows the terrain's shadow ceiling for the sun
@@ -46,6 +48,7 @@
 #include "gl/StepTimer.h"
 #include "gl/StreamedMesh.h"
 #include "gl/TerrainMesh.h"
+#include "gl/WaterPlane.h"
 #include "methods/TerrainMethod.h"
 
 #include <memory>
@@ -101,6 +104,7 @@ private:
     bool shadow_valid_ = false;
     ShadowCeilingTexture shadow_texture_;
     SkyPass sky_;
+    WaterPlane water_{terrain_};
     ObjectRenderer objects_;
     FlightVehicle vehicle_;
     StreamedMesh streamed_;

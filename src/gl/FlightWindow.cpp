@@ -48,6 +48,7 @@ std::optional<Key> key_of(int glfw_key, int mods) {
     case GLFW_KEY_P: return Key::Screenshot;
     case GLFW_KEY_H: return Key::Hud;
     case GLFW_KEY_Q: return Key::Quit;
+    case GLFW_KEY_O: return Key::Water;
     default: return std::nullopt;
     }
 }
@@ -205,7 +206,8 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
             hud.draw(HudInfo{fps, frame_ms, session.ms_per_physics_step(), latest_steps, counts.terrain_primitives,
                              counts.object_triangles, methods.name(current), methods.get(current).detail(),
                              glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, to_string(t.fog), t.lighting,
-                             t.wireframe, t.shadows, session.environment().sun_dir});
+                             t.wireframe, t.shadows, session.environment().sun_dir, t.water,
+                             float(session.water_level().value_or(0.0))});
             window.swap_buffers();
         }
         session.end_frame();

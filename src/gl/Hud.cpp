@@ -52,7 +52,9 @@ void Hud::draw(const HudInfo& info) {
         const SunAngles sun = sun_angles(info.sun_dir);
         ImGui::Text("sun azimuth %.0f  elevation %.0f%s", sun.azimuth, sun.elevation,
                     sun.elevation <= 0 ? " (night)" : "");
-        ImGui::TextDisabled("arrows fly  f 1 s t T W  + _  Tab P H q");
+        if (info.water) ImGui::Text("water on, level %.1f", double(info.water_level));
+        else ImGui::Text("water off");
+        ImGui::TextDisabled("arrows fly  f 1 s t T o W  + _  Tab P H q");
         ImGui::End();
     }
     ImGui::Render();

@@ -31,6 +31,8 @@ struct HudInfo {
     bool lighting = true, wireframe = false;
     bool shadows = false;
     glm::vec3 sun_dir{0.0f, 1.0f, 0.0f}; // towards the sun
+    bool water = false;
+    float water_level = 0.0f;
 };
 
 class Hud {

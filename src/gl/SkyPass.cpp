@@ -3,14 +3,14 @@
 
 namespace overflight::gl {
 
-namespace {
-
-const char* const kSkyVs = R"(
+const char* const kFullScreenVs = R"(
 void main() {
     vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
     gl_Position = vec4(p * 2.0 - 1.0, 1.0, 1.0);
 }
 )";
+
+namespace {
 
 const char* const kSkyFs = R"(
 out vec4 frag;
@@ -30,7 +30,7 @@ void main() {
 
 } // namespace
 
-SkyPass::SkyPass() : program_(make_program("sky", kSkyVs, kSkyFs)), vao_(make_vertex_array()) {}
+SkyPass::SkyPass() : program_(make_program("sky", kFullScreenVs, kSkyFs)), vao_(make_vertex_array()) {}
 
 void SkyPass::draw() const {
     glDisable(GL_DEPTH_TEST);

@@ -12,6 +12,10 @@
 
 namespace overflight::gl {
 
+// The vertex shader of a full-screen pass: one triangle covering the target
+// at window depth 1 (three vertices, no attributes).
+extern const char* const kFullScreenVs;
+
 class SkyPass {
 public:
     SkyPass();

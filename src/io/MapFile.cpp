@@ -7,6 +7,7 @@
 #include "io/ModelLoader.h"
 #include "io/SceneToml.h"
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -23,7 +24,7 @@ MapFile parse_map(std::string_view text, const std::string& subject, const std::
     const toml::table root = parse(text, subject);
     check_keys(root,
                {"h_scale", "v_scale", "y_offset", "sun_dir", "sun_color", "ambient", "fog_density", "fog_color", "sky_zenith",
-                "sky_horizon", "vehicle", "object", "line"},
+                "sky_horizon", "sea_level", "vehicle", "object", "line"},
                subject, "");
     MapFile map;
     map.h_scale = required_number(root, "h_scale", subject);
@@ -42,6 +43,10 @@ MapFile parse_map(std::string_view text, const std::string& subject, const std::
     env.fog_color = optional_vec3(root, "fog_color", env.fog_color, subject);
     env.sky_zenith = optional_vec3(root, "sky_zenith", env.sky_zenith, subject);
     env.sky_horizon = optional_vec3(root, "sky_horizon", env.sky_horizon, subject);
+    if (root.contains("sea_level")) {
+        env.sea_level = optional_float(root, "sea_level", 0.0f, subject);
+        if (!std::isfinite(*env.sea_level)) throw Error(subject, "sea_level must be a finite number");
+    }
     if (const toml::node* v = root.get("vehicle")) {
         const toml::table* t = v->as_table();
         if (!t) throw Error(subject, "line " + std::to_string(v->source().begin.line) + ": vehicle must be a table [vehicle]");
@@ -75,6 +80,7 @@ std::string format_map(const MapFile& map) {
                      {"fog_color", vec3_array(env.fog_color)},
                      {"sky_zenith", vec3_array(env.sky_zenith)},
                      {"sky_horizon", vec3_array(env.sky_horizon)}};
+    if (env.sea_level) root.insert("sea_level", double(*env.sea_level));
     if (map.start.given)
         root.insert("vehicle", toml::table{{"x", map.start.x}, {"z", map.start.z}, {"heading", map.start.heading}});
     toml_io::write_objects(map.scene, root);

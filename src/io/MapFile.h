@@ -11,6 +11,7 @@
 //     fog_density = 0.0002      # GL_EXP fog
 //     fog_color = [0.72, 0.8, 0.9]
 //     sky_zenith = [...]; sky_horizon = [...]
+//     sea_level = 0.0           # world Y of the sea that `--water` floods to
 //     [vehicle]
 //     x = 100.0; z = 200.0; heading = 90.0
 //     [[object]] ... / [[line]] ...  (DESIGN sec. 5, see SceneFile.h)

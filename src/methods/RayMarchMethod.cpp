@@ -7,6 +7,7 @@
 #include "core/SunLight.h"
 #include "methods/MethodTable.h"
 #include "raycast/RayMarcher.h"
+#include "raycast/WaterPass.h"
 
 #include <chrono>
 
@@ -17,16 +18,23 @@ namespace {
 class RayMarchMethod final : public TerrainMethod {
 public:
     explicit RayMarchMethod(const MethodContext& c)
-        : marcher_(c.terrain, env_), lighting_(c.terrain), surface_(c.settings.raycast.surface) {}
+        : marcher_(c.terrain, env_), lighting_(c.terrain), water_(c.terrain), surface_(c.settings.raycast.surface) {}
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
         env_ = view.environment;
         const auto t0 = std::chrono::steady_clock::now();
-        marcher_.set_colors(lighting_.colors(env_));
+        const std::vector<Rgb8>* colors = lighting_.colors(env_);
+        marcher_.set_colors(colors);
         marcher_.render(view.camera, surface_, color_, depth_);
         stats.add_step_since("raymarch", t0);
         stats.rays = (long long)view.camera.width * view.camera.height;
+        if (view.environment.water) {
+            const auto tw = std::chrono::steady_clock::now();
+            water_.set_colors(colors);
+            water_.apply(view.camera, view.environment, surface_, color_, depth_);
+            stats.add_step_since("water", tw);
+        }
         return MethodOutput::images(color_, depth_);
     }
 
@@ -34,6 +42,7 @@ private:
     Environment env_; // before marcher_, which reads it every frame
     RayMarcher marcher_;
     TerrainLighting lighting_;
+    WaterPass water_;
     SurfaceModel surface_;
     ColorImage color_;
     DepthImage depth_;

@@ -7,6 +7,7 @@
 #include "core/SunLight.h"
 #include "methods/MethodTable.h"
 #include "raycast/FloatingHorizonLiteral.h"
+#include "raycast/WaterPass.h"
 
 #include <chrono>
 
@@ -17,7 +18,7 @@ namespace {
 class VoxelLiteralMethod final : public TerrainMethod {
 public:
     explicit VoxelLiteralMethod(const MethodContext& c)
-        : terrain_(c.terrain), lighting_(c.terrain), options_(c.settings.raycast) {
+        : terrain_(c.terrain), lighting_(c.terrain), water_(c.terrain), options_(c.settings.raycast) {
         if (options_.lod) throw Error("distance LOD", "voxel-literal has none (it is Algorithm 1 as printed)");
     }
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
@@ -32,12 +33,19 @@ public:
                                         colors);
         stats.steps.push_back({"raycast", s.ms_total});
         stats.raycast = s;
+        if (view.environment.water) {
+            const auto tw = std::chrono::steady_clock::now();
+            water_.set_colors(colors);
+            water_.apply(view.camera, view.environment, options_.surface, color_, depth_);
+            stats.add_step_since("water", tw);
+        }
         return MethodOutput::images(color_, depth_);
     }
 
 private:
     const Terrain& terrain_;
     TerrainLighting lighting_;
+    WaterPass water_;
     RaycastOptions options_;
     ColorImage color_;
     DepthImage depth_;

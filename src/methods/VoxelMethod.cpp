@@ -8,6 +8,7 @@
 #include "core/SunLight.h"
 #include "methods/MethodTable.h"
 #include "raycast/FloatingHorizon.h"
+#include "raycast/WaterPass.h"
 
 #include <chrono>
 
@@ -18,7 +19,7 @@ namespace {
 class VoxelMethod final : public TerrainMethod {
 public:
     explicit VoxelMethod(const MethodContext& c)
-        : caster_(c.terrain), lighting_(c.terrain), options_(c.settings.raycast) {}
+        : caster_(c.terrain), lighting_(c.terrain), water_(c.terrain), options_(c.settings.raycast) {}
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
@@ -33,12 +34,19 @@ public:
         caster_.render(view.camera, view.environment, options_, color_, depth_, &s);
         stats.steps.push_back({"raycast", s.ms_total});
         stats.raycast = s;
+        if (view.environment.water) {
+            const auto tw = std::chrono::steady_clock::now();
+            water_.set_colors(colors);
+            water_.apply(view.camera, view.environment, options_.surface, color_, depth_);
+            stats.add_step_since("water", tw);
+        }
         return MethodOutput::images(color_, depth_);
     }
 
 private:
     FloatingHorizon caster_;
     TerrainLighting lighting_;
+    WaterPass water_;
     std::uint64_t painted_ = 0; // the lighting's version the caster paints
     RaycastOptions options_;
     ColorImage color_;

@@ -2,6 +2,7 @@
 #include "sim/FlightSession.h"
 
 #include "core/SunLight.h"
+#include "core/WaterSurface.h"
 
 #include <algorithm>
 #include <chrono>
@@ -86,6 +87,10 @@ FlightSession::FlightSession(const Terrain& terrain, const Environment& environm
     toggles_.hud = options.hud;
     toggles_.lighting = options.lighting;
     toggles_.shadows = environment.shadows;
+    toggles_.water = environment.water;
+    const double level = environment.water ? double(environment.water_level)
+                                           : default_water_level(terrain, environment);
+    if (water_level_problem(terrain, level).empty()) water_level_ = level;
     pending_.reserve(kMaxCommands);
     commands_.reserve(kMaxCommands);
     record_.frames.reserve(unattended() ? std::size_t(options.frames) : 4096);
@@ -121,6 +126,7 @@ const std::vector<Key>& FlightSession::begin_frame() {
         case Key::Wireframe: toggles_.wireframe = !toggles_.wireframe; break;
         case Key::Hud: toggles_.hud = !toggles_.hud; break;
         case Key::Shadows: toggles_.shadows = !toggles_.shadows; break;
+        case Key::Water: toggles_.water = !toggles_.water && water_level_; break;
         case Key::SunLater:
         case Key::SunEarlier:
             if (!sun_moved_) sun_hour_ = hour_of_sun(environment_.sun_dir);
@@ -140,6 +146,7 @@ void FlightSession::advance(double wall_seconds) {
     const int steps = clock_.advance(dt);
     seen_ = Controls{};
     const auto t0 = std::chrono::steady_clock::now();
+    hovercraft_.set_water_level(toggles_.water ? water_level_ : std::nullopt);
     for (int i = 0; i < steps; ++i) {
         const Controls c = keys_.sample();
         hovercraft_.step(c);
@@ -175,6 +182,9 @@ Environment FlightSession::environment() const {
     Environment e = view_environment(environment_, terrain_, toggles_.fog, toggles_.lighting);
     e.shadows = toggles_.shadows;
     if (sun_moved_) e.sun_dir = sun_at_hour(sun_hour_);
+    e.water = toggles_.water;
+    if (water_level_) e.water_level = float(*water_level_);
+    e.water_time = sim_time_;
     return e;
 }
 

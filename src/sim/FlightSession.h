@@ -51,6 +51,7 @@ struct ViewToggles {
     FogMode fog = FogMode::Off;
     bool lighting = true, wireframe = false, hud = true;
     bool shadows = false; // the terrain's cast shadows (s)
+    bool water = false;   // the water surface (o), at FlightSession::water_level()
 };
 
 // The camera every fly frame starts from: `fov`, near 0.5, far covering the
@@ -99,6 +100,10 @@ public:
     // hour along core/SunLight.h's day arc per press).
     Environment environment() const;
     const FlightRecord& record() const { return record_; }
+    // The level the water key floods to: the environment's water level if it
+    // has water, else the data set's sea level (core/WaterSurface.h); nullopt
+    // when that lies outside the terrain's heights (the key does nothing).
+    std::optional<double> water_level() const { return water_level_; }
     long long physics_steps() const { return physics_steps_; }
     double ms_per_physics_step() const { return ms_per_step_; } // CPU time of the last frame's steps
 
@@ -115,6 +120,7 @@ private:
     std::vector<Key> commands_; // this frame's, for the caller
     unsigned scripted_held_ = 0; // vehicle keys the script holds (a bit per key)
     ViewToggles toggles_;
+    std::optional<double> water_level_;
     bool sun_moved_ = false; // the time-of-day keys were used: sun_hour_ sets the sun
     double sun_hour_ = 12.0;
     FlightRecord record_;

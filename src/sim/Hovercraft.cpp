@@ -156,7 +156,8 @@ void Hovercraft::step(const Controls& keys) {
     const double v = s.velocity;
     const double a = std::max(0.0, k.accel_max - v * v / k.accel_div);
     const double f = k.f0 + k.f1 * v + k.f2 * v * v;
-    const double g = k.gravity * slope_vector(*terrain_, s.x, s.z, s.heading, k.slope, k.probe).y;
+    const bool afloat = water_ && ground_height(*terrain_, s.x, s.z) < *water_;
+    const double g = afloat ? 0.0 : k.gravity * slope_vector(*terrain_, s.x, s.z, s.heading, k.slope, k.probe).y;
     double vn = v - dt * (f + g);
     if (keys.accelerate) vn += dt * a;
     if (keys.brake) vn -= dt * k.brake;
@@ -191,7 +192,7 @@ void Hovercraft::step(const Controls& keys) {
     s.heading = wrap_heading(h);
     s.x = x;
     s.z = z;
-    s.y = ground_height(*terrain_, x, z) + k.altitude;
+    s.y = std::max(ground_height(*terrain_, x, z), water_.value_or(-kWorldLimit)) + k.altitude;
 }
 
 } // namespace overflight

@@ -10,6 +10,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <optional>
+
 namespace overflight {
 
 // Seed 003 sec. 3.2 offers two ways to get the unit slope vector s(p, h).
@@ -97,6 +99,11 @@ public:
     const HovercraftState& state() const { return state_; }
     const HovercraftParams& params() const { return params_; }
     const Terrain& terrain() const { return *terrain_; }
+    // Water at world height `level` (nullopt: none): from the next step the
+    // vehicle rides on the higher of ground_height() and the water, with the
+    // paper's physics otherwise unchanged; over water (ground_height() below
+    // the level) the surface is level, so gravity's slope term is 0.
+    void set_water_level(std::optional<double> level) { water_ = level; }
     // Number of edge bounces so far.
     long long bounces() const { return bounces_; }
 
@@ -105,6 +112,7 @@ private:
     HovercraftParams params_;
     HovercraftState state_;
     long long bounces_ = 0;
+    std::optional<double> water_;
 };
 
 } // namespace overflight

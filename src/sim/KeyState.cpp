@@ -7,7 +7,7 @@ namespace overflight {
 namespace {
 constexpr std::array<const char*, kKeyCount> kNames = {
     "accelerate", "brake", "left", "right", "fog", "lighting", "wireframe",
-    "detail-up", "detail-down", "next-method", "screenshot", "hud", "quit", "shadows", "sun-later", "sun-earlier"};
+    "detail-up", "detail-down", "next-method", "screenshot", "hud", "quit", "shadows", "sun-later", "sun-earlier", "water"};
 
 std::uint8_t bit(Key k) { return std::uint8_t(1u << unsigned(k)); }
 

@@ -30,12 +30,13 @@ enum class Key : std::uint8_t {
     Shadows,    // s  (the terrain's cast shadows)
     SunLater,   // t  (the sun half an hour later along its day arc)
     SunEarlier, // T  (half an hour earlier)
+    Water,      // o  (the water surface on/off)
 };
-inline constexpr int kKeyCount = 16;
+inline constexpr int kKeyCount = 17;
 
 // The name used on the command line (`--press accelerate:0-100`) and in records:
 // accelerate, brake, left, right, fog, lighting, wireframe, detail-up,
-// detail-down, next-method, screenshot, hud, quit, shadows, sun-later, sun-earlier.
+// detail-down, next-method, screenshot, hud, quit, shadows, sun-later, sun-earlier, water.
 const char* key_name(Key k);
 // Inverse of key_name; nullopt for an unknown name.
 std::optional<Key> key_from_name(std::string_view name);

@@ -168,3 +168,16 @@ TEST(MapFile, MissingFile) {
 
 } // namespace
 } // namespace overflight
+
+namespace overflight {
+
+TEST(MapFile, SeaLevelIsOptionalAndRoundTrips) {
+    EXPECT_FALSE(parse_map("h_scale = 1.0\nv_scale = 1.0\n", "map").environment.sea_level);
+    const MapFile m = parse_map("h_scale = 1.0\nv_scale = 1.0\nsea_level = -3.5\n", "map");
+    ASSERT_TRUE(m.environment.sea_level);
+    EXPECT_EQ(*m.environment.sea_level, -3.5f);
+    EXPECT_EQ(parse_map(format_map(m), "map").environment.sea_level, -3.5f);
+    EXPECT_THROW(parse_map("h_scale = 1.0\nv_scale = 1.0\nsea_level = \"low\"\n", "map"), Error);
+}
+
+} // namespace overflight

@@ -77,6 +77,8 @@ TEST(RenderVoxelCli, BadCameraInputIsOneLineAndLeavesNothing) {
         {"--sun 10,95", "--sun"},
         {"--sun east,10", "--sun"},
         {"--lighting flat", "--lighting"},
+        {"--water-level 99999", "--water-level"},
+        {"--water-level deep", "--water-level"},
     };
     for (const auto& c : cases) {
         const std::string size = std::string(c.args).find("--size") == std::string::npos ? " --size 16x8 " : " ";

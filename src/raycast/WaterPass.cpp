@@ -1,0 +1,84 @@
+// Based on: Schlick (1994) and Tessendorf (2001) through core/WaterSurface.h;
+// the mirrored ray marched as Szenberg 1997 sec. 4's plain ray casting
+// (RayMarcher). See WaterPass.h.
+#include "raycast/WaterPass.h"
+
+#include "core/WaterSurface.h"
+#include "raycast/Atmosphere.h"
+#include "raycast/RayMarcher.h"
+
+#include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace overflight {
+
+namespace {
+
+glm::vec3 unit_rgb(Rgb8 c) { return glm::vec3(c.r, c.g, c.b) / 255.0f; }
+
+glm::dvec3 unproject(const glm::dmat4& inverse_vp, double nx, double ny, double window_depth) {
+    const glm::dvec4 p = inverse_vp * glm::dvec4(nx, ny, window_depth * 2.0 - 1.0, 1.0);
+    return glm::dvec3(p) / p.w;
+}
+
+} // namespace
+
+long long WaterPass::apply(const Camera& camera, const Environment& env, SurfaceModel surface, ColorImage& color,
+                           DepthImage& depth) const {
+    if (!env.water || !(camera.eye.y > double(env.water_level))) return 0;
+    const Terrain& t = terrain_;
+    RayMarcher marcher(t, env);
+    marcher.set_colors(colors_);
+    const RayMarcher::Frame frame = marcher.frame(camera);
+    const double level = env.water_level;
+    const double top = double(t.max_height());
+    std::atomic<long long> flooded{0};
+    tbb::parallel_for(0, camera.height, [&](int row) {
+        long long n = 0;
+        const double ny = 1.0 - (row + 0.5) / camera.height * 2.0;
+        for (int col = 0; col < camera.width; ++col) {
+            const double nx = (col + 0.5) / camera.width * 2.0 - 1.0;
+            const glm::dvec3 a = unproject(frame.inverse_view_projection, nx, ny, 0.0);
+            const glm::dvec3 b = unproject(frame.inverse_view_projection, nx, ny, 1.0);
+            const glm::dvec3 d = b - a;
+            if (!(d.y < 0.0)) continue;
+            const double s = (level - a.y) / d.y;
+            if (s < 0.0 || s > 1.0) continue;
+            const glm::dvec3 p = a + s * d;
+            if (!t.contains(float(p.x), float(p.z))) continue;
+            const glm::dvec4 clip = frame.view_projection * glm::dvec4(p, 1.0);
+            const float z = float(std::clamp((clip.z / clip.w + 1.0) * 0.5, 0.0, 1.0));
+            float& behind = depth.at(col, row);
+            if (!(z < behind)) continue;
+            WaterSample w;
+            w.view = glm::vec3(glm::normalize(d));
+            w.normal = water_normal(float(p.x), float(p.z), env.water_time, t.h_scale());
+            w.path = water_path(float(level) - t.height_bilinear(float(p.x), float(p.z)), w.view);
+            // The mirrored ray, up to where it rises above the highest sample.
+            const glm::dvec3 r(water_reflect(w.view, w.normal));
+            const double reach = std::min(glm::length(d), (top - level) / r.y + t.h_scale());
+            const RayMarcher::Hit hit = marcher.intersect(p, p + reach * r, surface);
+            Rgb8 reflected;
+            if (!hit.hit) reflected = env.atmosphere ? aerial_sky_rgb(frame.air, r) : sky_color(env, r);
+            else if (env.atmosphere) reflected = aerial_rgb(frame.air, hit.surface, hit.point - p);
+            else reflected = apply_fog(env, hit.surface, fog_factor(env, glm::length(hit.point - p)));
+            w.reflected = unit_rgb(reflected);
+            const WaterLight light = water_light(env, w);
+            const Rgb8 c = to_rgb8(glm::clamp(light.surface, 0.0f, 1.0f));
+            const Rgb8 own = env.atmosphere ? aerial_rgb(frame.air, c, p - camera.eye)
+                                            : apply_fog(env, c, fog_factor(env, glm::length(p - camera.eye)));
+            Rgb8& pixel = color.at(col, row);
+            pixel = to_rgb8(unit_rgb(own) + (unit_rgb(pixel) - unit_rgb(own)) * light.behind);
+            behind = z;
+            ++n;
+        }
+        flooded += n;
+    });
+    return flooded.load();
+}
+
+} // namespace overflight

@@ -1,0 +1,57 @@
+#pragma once
+// The water surface (core/WaterSurface.h) in the ray casters' images: one
+// pass over the color and window-depth images a ray caster (voxel,
+// voxel-literal, raymarch; shear or tilt camera) made of the dry terrain.
+//
+// The surface the caster should have seen is max(terrain, level): along a
+// pixel's ray that is the water plane wherever the ray meets the plane before
+// the terrain (or the sky), i.e. wherever the plane's window depth at the
+// pixel is smaller than the image's. Those pixels get the plane's exact depth
+// (OpenGL convention, so objects composite against the water as against the
+// terrain) and the water's color:
+//   - the mirrored ray (the view ray reflected at the waves' normal) is
+//     marched through the same height field as the reference ray marcher
+//     does (RayMarcher::intersect, exact for the `blocks` surface, a quarter
+//     cell for `bilinear`) up to where it rises above the highest sample: the
+//     reflected color is the lit sample it hits, fogged over the mirrored
+//     path (GL_EXP; with the atmosphere, its aerial perspective from the
+//     water point), or the sky along it. The only error is the surface
+//     model's own: no approximation of the march;
+//   - the bottom is what the image held at that pixel (the terrain under the
+//     water, fogged), the water path from the depth under the point
+//     (water_path of the bilinear surface);
+//   - water_light, fogged from the eye like any terrain, over the bottom.
+// The eye below the level sees no water (the plane is drawn from above only).
+// Pixels elsewhere are not touched: without water the images are the caster's.
+//
+// Cost: one unprojection per pixel, and per water pixel one march of the
+// mirrored ray (a few hundred cells at most over the bench terrains).
+#include "core/Camera.h"
+#include "core/DataSet.h"
+#include "core/Image.h"
+#include "core/Terrain.h"
+#include "raycast/RaycastOptions.h"
+
+#include <vector>
+
+namespace overflight {
+
+class WaterPass {
+public:
+    // Keeps a reference to terrain (it must outlive this object).
+    explicit WaterPass(const Terrain& terrain) : terrain_(terrain) {}
+    // The sample colors the reflections and the bottom show (e.g. sun-lit,
+    // as the caster paints; must outlive their use); null: the terrain's.
+    void set_colors(const std::vector<Rgb8>* colors) { colors_ = colors; }
+
+    // Floods `color`/`depth` (the caster's images for `camera`, its size)
+    // to env.water_level when env.water is on; returns the water pixels.
+    long long apply(const Camera& camera, const Environment& env, SurfaceModel surface, ColorImage& color,
+                    DepthImage& depth) const;
+
+private:
+    const Terrain& terrain_;
+    const std::vector<Rgb8>* colors_ = nullptr;
+};
+
+} // namespace overflight
