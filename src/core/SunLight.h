@@ -13,6 +13,7 @@
 // ambient light, Lambert's cosine law).
 #include "core/DataSet.h"
 #include "core/HorizonSweep.h"
+#include "core/PackedNormals.h"
 #include "core/Terrain.h"
 
 #include <glm/vec3.hpp>
@@ -51,10 +52,12 @@ bool lighting_is_baked(const Environment& env);
 glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit);
 
 // Fills `out` (resized to the terrain's samples) with albedo x light per
-// sample, rounded to 8 bits. `shadow` (null: nothing shadowed) must have
-// been computed for env.sun_dir. Parallel over rows.
-void light_colors(const Terrain& terrain, const Environment& env, const ShadowCeiling* shadow,
-                  std::vector<Rgb8>& out);
+// sample, rounded to 8 bits, from the terrain's normals packed by
+// pack_normals (within one color level of sample_light with
+// Terrain::sample_normal: PackedNormals.h). `shadow` (null: nothing
+// shadowed) must have been computed for env.sun_dir. Parallel over rows.
+void light_colors(const Terrain& terrain, const PackedNormals& normals, const Environment& env,
+                  const ShadowCeiling* shadow, std::vector<Rgb8>& out);
 
 // The lit colors of one terrain for the environment of the frame, recomputed
 // only when the sun, its colors or Environment::shadows change (the horizon
@@ -77,6 +80,7 @@ private:
     Environment lit_for_;
     ShadowCeiling shadow_;
     bool shadow_valid_ = false;
+    PackedNormals normals_; // packed on the first lit call
     std::vector<Rgb8> colors_;
     std::uint64_t version_ = 0;
 };
