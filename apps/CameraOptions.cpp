@@ -158,7 +158,7 @@ std::optional<CameraFileMap> camera_map_of(const Camera& camera, const DataSet& 
     const MapFrame frame(data.info, data.terrain.h_scale(), data.info.source);
     CameraFileMap m;
     m.crs = frame.crs_code();
-    m.crs_name = frame.crs_name();
+    m.crs_name = data.info.crs.empty() ? frame.crs_name() : data.info.crs;
     const glm::dvec2 en = frame.map_of_world(camera.eye.x, camera.eye.z);
     const glm::dvec2 ll = frame.lonlat_of_world(camera.eye.x, camera.eye.z);
     m.eye = {en.x, en.y, camera.eye.y};
@@ -176,8 +176,8 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
         cam = file.camera;
         if (file.map_eye) {
             const MapFrame frame(data.info, t.h_scale(), a.camera_file);
-            const glm::dvec2 w = frame.world_of(file.map_eye->position.x, file.map_eye->position.y,
-                                                file.map_eye->crs == kLonLat ? kLonLat : file.map_eye->crs, a.camera_file);
+            const glm::dvec2 w =
+                frame.world_of(file.map_eye->position.x, file.map_eye->position.y, file.map_eye->crs, a.camera_file);
             cam.eye = {w.x, file.map_eye->position.z, w.y};
         }
         // Another size keeps the horizontal field of view (DESIGN sec. 2's fov).

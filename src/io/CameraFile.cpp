@@ -81,8 +81,8 @@ CameraFile read_camera_file(const std::string& path, const Camera& defaults) {
         if (!m.is_object()) throw Error(path, "map is not an object");
         if (m.contains("crs_name") && m["crs_name"].is_string()) f.map_crs_name = m["crs_name"];
         if (!f.has_eye && m.contains("eye")) {
-            if (!m.contains("crs") || !m["crs"].is_string()) throw Error(path, "map.eye needs map.crs (for example \"EPSG:32610\")");
-            f.map_eye = CameraFileMapEye{triple(m["eye"], "map.eye", path), m["crs"].get<std::string>()};
+            if (m.contains("crs") && !m["crs"].is_string()) throw Error(path, "map.crs is not a string (for example \"EPSG:32610\")");
+            f.map_eye = CameraFileMapEye{triple(m["eye"], "map.eye", path), m.value("crs", std::string())};
         } else if (!f.has_eye && m.contains("eye_lonlat")) {
             f.map_eye = CameraFileMapEye{triple(m["eye_lonlat"], "map.eye_lonlat", path), "lonlat"};
         }
@@ -96,7 +96,7 @@ CameraFile read_camera_file(const std::string& path, const Camera& defaults) {
     return f;
 }
 
-void write_camera_file(const std::string& path, const Camera& c, const std::optional<CameraFileMap>& map) {
+std::string camera_file_text(const Camera& c, const std::optional<CameraFileMap>& map) {
     json j = {{"format", kFormat},
               {"version", 1},
               {"eye", array_of(c.eye)},
@@ -112,7 +112,11 @@ void write_camera_file(const std::string& path, const Camera& c, const std::opti
         j["map"] = {{"crs", map->crs}, {"crs_name", map->crs_name}, {"eye", array_of(map->eye)},
                     {"eye_lonlat", array_of(map->eye_lonlat)}};
     }
-    const std::string text = j.dump(2) + "\n";
+    return j.dump(2) + "\n";
+}
+
+void write_camera_file(const std::string& path, const Camera& camera, const std::optional<CameraFileMap>& map) {
+    const std::string text = camera_file_text(camera, map);
     write_file_atomically(path, text.data(), text.size());
 }
 

@@ -23,7 +23,7 @@
 namespace overflight {
 
 // The map eye of a camera file: coordinates and the CRS they are in ("lonlat"
-// for map.eye_lonlat, else the CRS code given as map.crs).
+// for map.eye_lonlat, else map.crs; empty: the terrain's own CRS).
 struct CameraFileMapEye {
     glm::dvec3 position{0.0};
     std::string crs;
@@ -43,11 +43,13 @@ CameraFile read_camera_file(const std::string& path, const Camera& defaults);
 
 // Writes `camera` (and `map` when given) to `path` atomically; Error(path, ...) on failure.
 struct CameraFileMap {
-    std::string crs;       // "EPSG:32610" or empty
+    std::string crs;       // "EPSG:32610"; empty when the CRS has no code (then map.eye is in the terrain's CRS)
     std::string crs_name;  // "WGS 84 / UTM zone 10N"
     glm::dvec3 eye{0.0};   // easting, northing, elevation
     glm::dvec3 eye_lonlat{0.0};
 };
 void write_camera_file(const std::string& path, const Camera& camera, const std::optional<CameraFileMap>& map);
+// The text write_camera_file writes (JSON, ending in a newline).
+std::string camera_file_text(const Camera& camera, const std::optional<CameraFileMap>& map);
 
 } // namespace overflight

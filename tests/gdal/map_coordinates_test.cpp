@@ -127,6 +127,7 @@ TEST(MapCoordinates, LookAtPutsTheSummitOnTheImageCentre) {
     // Paradise, so the ray comes down onto the summit at about 19 degrees
     // rather than grazing the dome (seen from Paradise's ground a grazing
     // ray meets the 90 m blocks of the dome's near side first).
+    GDALAllRegister();
     GDALDatasetH ds = GDALOpen(depth.c_str(), GA_ReadOnly);
     ASSERT_NE(ds, nullptr);
     float wd = 0;
