@@ -1,6 +1,6 @@
 // `overflight fly TERRAIN [--scene FILE] [--method M] [--record path.csv]
 //                  [--frames N --press KEY:FROM-TO ... --screenshot FILE]
-//                  [--replay path.csv [--frames N] --out DIR [--video out.mp4]]`
+//                  [--replay path.csv [--frames N] --out DIR [--video out.mp4] [--save-cameras]]`
 // (DESIGN sec. 6). Interactive: a resizable window flying the
 // hovercraft (gl/FlightWindow). With --frames: an unattended run of N frames
 // with scripted keys (FROM-TO in frames). With --replay: the recorded cameras
@@ -14,6 +14,7 @@
 // Prints one CSV line per method used:
 //   method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step
 // the last column as "step:ms;step:ms;..." (mean over the timed frames).
+#include "CameraOptions.h"
 #include "Commands.h"
 #include "LookOptions.h"
 #include "OptionValues.h"
@@ -22,12 +23,14 @@
 #include "core/Error.h"
 #include "core/SunLight.h"
 #include "gl/FlightWindow.h"
+#include "io/CameraFile.h"
 #include "io/Files.h"
 #include "io/FlightRecordFile.h"
 #include "io/ImageWriters.h"
 #include "io/SceneFile.h"
 #include "io/Subprocess.h"
 #include "io/TileDirectory.h"
+#include "sim/FlightSession.h"
 #include "sim/KeyScript.h"
 
 #include <algorithm>
@@ -51,6 +54,7 @@ struct FlyOptions {
     std::vector<std::string> presses;
     double fov = 60;
     bool no_hud = false, hidden = false;
+    bool save_cameras = false; // --replay: a camera file beside each frame
 };
 
 void parse_size(const std::string& s, int& w, int& h) {
@@ -128,6 +132,20 @@ void run_replay(const FlyOptions& o, const DataSet& data, const MethodContext& m
                 const std::string path = (fs::path(o.out) / frame_name(index)).string();
                 write_png(path, image);
                 written.push_back(path);
+                if (o.save_cameras) {
+                    // The frame's camera as a camera file (render --camera
+                    // draws the same view, without the hovercraft).
+                    const FlightFrame& f = record.frames[std::size_t(index)];
+                    Camera cam = flight_camera(data.terrain, o.fov);
+                    cam.width = w;
+                    cam.height = h;
+                    cam.eye = f.eye;
+                    cam.heading = f.heading;
+                    cam.pitch = f.pitch;
+                    const std::string json = fs::path(path).replace_extension(".json").string();
+                    write_camera_file(json, cam, camera_map_of(cam, data));
+                    written.push_back(json);
+                }
                 rendered.frames.push_back(record.frames[std::size_t(index)]);
                 ++index;
             });
@@ -232,6 +250,8 @@ void add_fly_command(CLI::App& app) {
                     "quadtree over a tile directory: memory bound of the tile cache in MiB")
         ->transform(decimal<int>())
         ->capture_default_str();
+    sub->add_flag("--save-cameras", o->save_cameras,
+                  "With --replay: also write each frame's camera file (frame_00000.json, read by render --camera)");
     sub->add_flag("--no-hud", o->no_hud, "Start with the HUD hidden (H toggles)");
     sub->add_flag("--hidden", o->hidden, "Do not show the window (unattended runs)");
     sub->callback([o, sub] {

@@ -4,6 +4,7 @@
 // line naming it.
 #include "TestSupport.h"
 #include "io/Files.h"
+#include "sim/FlightRecord.h"
 
 #include <nlohmann/json.hpp>
 
@@ -85,6 +86,36 @@ TEST(CameraFile, BadFilesAreOneLineErrors) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err.rfind("overflight: " + dir / "none.json" + ": ", 0), 0u) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+TEST(CameraFile, FlightReplayWritesEachFramesCamera) {
+    ScratchDir dir;
+    FlightRecord record;
+    for (int k = 0; k < 2; ++k) {
+        FlightFrame f;
+        f.frame = k;
+        f.time = 0.01 * k;
+        f.eye = {600.0 + 10.0 * k, 1500.0, 700.0};
+        f.heading = 30.0 + k;
+        f.pitch = -10.0;
+        record.frames.push_back(f);
+    }
+    std::ofstream(dir / "rec.csv") << format_flight_record(record);
+    const test::RunResult r = run_overflight("fly demo --demo-size 129 --replay '" + dir / "rec.csv" + "' --out '" +
+                                             dir / "frames" + "' --size 64x48 --fov 50 --save-cameras");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (int k = 0; k < 2; ++k) {
+        const std::string json = dir / ("frames/frame_0000" + std::to_string(k) + ".json");
+        const auto j = nlohmann::json::parse(test::read_file_text(json));
+        EXPECT_EQ(j["eye"], nlohmann::json::array({600.0 + 10.0 * k, 1500.0, 700.0}));
+        EXPECT_EQ(j["heading"], 30.0 + k);
+        EXPECT_EQ(j["pitch"], -10.0);
+        EXPECT_EQ(j["fov"], 50.0);
+        EXPECT_EQ(j["width"], 64);
+        // The camera file renders (the view without the hovercraft).
+        EXPECT_EQ(run_overflight("render demo --demo-size 129 --method mesh -o '" + dir / "r.png" + "' --camera '" + json + "'")
+                      .exit_code, 0);
+    }
 }
 
 } // namespace
