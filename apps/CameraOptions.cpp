@@ -121,7 +121,7 @@ Camera default_camera(const DataSet& data, int width, int height) {
     return cam;
 }
 
-Position parse_position(const std::string& text, const std::string& option, bool engine_height, const std::string& crs,
+Position parse_position(const std::string& text, const std::string& option, EngineForm form, const std::string& crs,
                         const DataSet& data) {
     std::string body;
     std::string in_crs = crs;
@@ -137,8 +137,10 @@ Position parse_position(const std::string& text, const std::string& option, bool
     }
     Position p;
     if (!map) {
-        const std::vector<double> v = engine_height ? parse_list(body, option, 3, "X,Y,Z (three numbers)")
-                                                    : parse_list(body, option, 2, "X,Z (two numbers)");
+        const std::vector<double> v =
+            form == EngineForm::XYZ  ? parse_list(body, option, 3, "X,Y,Z (three numbers)")
+            : form == EngineForm::XZ ? parse_list(body, option, 2, "X,Z (two numbers)")
+                                     : pair_or_triple(body, option, "X,Z or X,Y,Z (two or three numbers)");
         p.x = v[0];
         p.z = v.back();
         if (v.size() == 3) p.y = v[1];
@@ -171,13 +173,16 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
     int width = default_width, height = default_height;
     if (!a.size.empty()) parse_size(a.size, "--size", width, height);
     Camera cam = default_camera(data, width, height);
-    if (!a.camera_file.empty()) {
-        const CameraFile file = read_camera_file(a.camera_file, cam);
+    const bool from_file = !a.camera_file.empty() || !a.camera_text.empty();
+    if (from_file) {
+        const std::string subject = a.camera_text.empty() ? a.camera_file : "camera";
+        const CameraFile file = a.camera_text.empty() ? read_camera_file(a.camera_file, cam)
+                                                       : parse_camera_file(a.camera_text, subject, cam);
         cam = file.camera;
         if (file.map_eye) {
-            const MapFrame frame(data.info, t.h_scale(), a.camera_file);
+            const MapFrame frame(data.info, t.h_scale(), subject);
             const glm::dvec2 w =
-                frame.world_of(file.map_eye->position.x, file.map_eye->position.y, file.map_eye->crs, a.camera_file);
+                frame.world_of(file.map_eye->position.x, file.map_eye->position.y, file.map_eye->crs, subject);
             cam.eye = {w.x, file.map_eye->position.z, w.y};
         }
         // Another size keeps the horizontal field of view (DESIGN sec. 2's fov).
@@ -194,7 +199,7 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
     bool user_eye = false;
     std::optional<Position> ground_eye; // an eye given by its ground position, at --agl
     if (!a.eye.empty()) {
-        const Position p = parse_position(a.eye, "--eye", true, a.crs, data);
+        const Position p = parse_position(a.eye, "--eye", EngineForm::XYZ, a.crs, data);
         if (p.y) {
             if (a.agl) throw Error("--agl", "applies to --at or to a map --eye without height, not to " + a.eye);
             cam.eye = {p.x, *p.y, p.z};
@@ -205,7 +210,7 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
     } else if (!a.at.empty() || a.agl) {
         Position p{cam.eye.x, cam.eye.z, std::nullopt};
         if (!a.at.empty()) {
-            p = parse_position(a.at, "--at", false, a.crs, data);
+            p = parse_position(a.at, "--at", EngineForm::XZ, a.crs, data);
             if (p.y) throw Error("--at", "'" + a.at + "' gives a height; --at takes the ground position, --agl the height above it");
             user_eye = true;
         }
@@ -232,13 +237,13 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
     if (t.contains(float(cam.eye.x), float(cam.eye.z))) {
         const double ground = ground_at(t, cam.eye.x, cam.eye.z);
         if (cam.eye.y < ground)
-            throw Error(ground_eye ? "--agl" : !a.eye.empty() ? "--eye" : !a.camera_file.empty() ? a.camera_file : "--agl",
+            throw Error(ground_eye ? "--agl" : !a.eye.empty() ? "--eye" : from_file ? (a.camera_text.empty() ? a.camera_file : "camera") : "--agl",
                         "eye " + num(cam.eye.x) + "," + num(cam.eye.y) + "," + num(cam.eye.z) + " is " +
                             num(ground - cam.eye.y) + " below the terrain surface (ground at " + num(ground) +
                             " there)");
     }
     if (!a.look_at.empty()) {
-        const Position p = parse_position(a.look_at, "--look-at", false, a.crs, data);
+        const Position p = parse_position(a.look_at, "--look-at", EngineForm::XZOrXYZ, a.crs, data);
         if (!t.contains(float(p.x), float(p.z))) throw Error("--look-at", outside_terrain(t, p.x, p.z));
         const glm::dvec3 d = glm::dvec3(p.x, p.y.value_or(t.height_bilinear(float(p.x), float(p.z))), p.z) - cam.eye;
         const double across = std::hypot(d.x, d.z);
@@ -255,7 +260,7 @@ Camera make_camera(const CameraArgs& a, const DataSet& data, int default_width, 
     if (a.heading) {
         if (!std::isfinite(*a.heading)) throw Error("--heading", "is not a number");
         cam.heading = *a.heading;
-    } else if (user_eye && a.camera_file.empty()) { // a camera file's heading stays
+    } else if (user_eye && !from_file) { // a camera file's heading stays
         const double dx = t.width() * 0.5 - cam.eye.x, dz = t.depth() * 0.5 - cam.eye.z;
         if (std::hypot(dx, dz) > 1e-6) cam.heading = glm::degrees(std::atan2(dx, dz));
     }

@@ -38,6 +38,7 @@ struct CameraArgs {
     std::string look_at;    // a position
     std::string crs;        // --crs: the CRS of plain positions
     std::string camera_file; // --camera FILE
+    std::string camera_text; // a camera file's contents given directly (the Python module's camera dict)
 };
 
 // A position of the command line in the engine frame: X, Z and the height
@@ -47,11 +48,14 @@ struct Position {
     std::optional<double> y;
 };
 
-// `text` as a position for `option`: engine "X,Z" (or "X,Y,Z" when
-// `engine_height`), "lonlat:LON,LAT[,H]", "crs:E,N[,H]", or a plain
-// "E,N[,H]" in `crs` when it is not empty. Throws Error(option, ...) for a
-// malformed text or a map position on a terrain without georeferencing.
-Position parse_position(const std::string& text, const std::string& option, bool engine_height, const std::string& crs,
+// The engine coordinates a position option takes.
+enum class EngineForm { XZ, XYZ, XZOrXYZ };
+
+// `text` as a position for `option`: engine coordinates of `form`,
+// "lonlat:LON,LAT[,H]", "crs:E,N[,H]", or a plain "E,N[,H]" in `crs` when it
+// is not empty. Throws Error(option, ...) for a malformed text or a map
+// position on a terrain without georeferencing.
+Position parse_position(const std::string& text, const std::string& option, EngineForm form, const std::string& crs,
                         const DataSet& data);
 
 // Adds the options above to `cmd`; `args` must outlive the parse.

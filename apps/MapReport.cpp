@@ -45,7 +45,7 @@ nlohmann::ordered_json map_report(const TerrainDescription& d, const DataSet* da
     const Camera cam = default_camera(*data, 1280, 720);
     j["default_camera"] = nlohmann::ordered_json::parse(camera_file_text(cam, camera_map_of(cam, *data)));
     if (!at.empty()) {
-        const Position p = parse_position(at, "--at", false, crs, *data);
+        const Position p = parse_position(at, "--at", EngineForm::XZ, crs, *data);
         if (p.y) throw Error("--at", "'" + at + "' gives a height; info --at takes a ground position");
         if (!t.contains(float(p.x), float(p.z)))
             throw Error("--at", "point " + fixed(p.x, 3) + "," + fixed(p.z, 3) + " is outside the terrain (X 0.." +

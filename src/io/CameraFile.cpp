@@ -39,9 +39,13 @@ json array_of(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
 CameraFile read_camera_file(const std::string& path, const Camera& defaults) {
     const std::vector<std::uint8_t> bytes = read_file_bytes(path);
+    return parse_camera_file(std::string(bytes.begin(), bytes.end()), path, defaults);
+}
+
+CameraFile parse_camera_file(const std::string& text, const std::string& path, const Camera& defaults) {
     json j;
     try {
-        j = json::parse(bytes.begin(), bytes.end());
+        j = json::parse(text);
     } catch (const json::exception&) {
         throw Error(path, "not a camera file (not JSON)");
     }

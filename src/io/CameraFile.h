@@ -40,6 +40,8 @@ struct CameraFile {
 // Throws Error(path, problem) for a missing or unreadable file, bad JSON, a
 // field of the wrong type or value (the camera is validated), or no eye at all.
 CameraFile read_camera_file(const std::string& path, const Camera& defaults);
+// The same for a camera file's contents `text`, errors naming `subject`.
+CameraFile parse_camera_file(const std::string& text, const std::string& subject, const Camera& defaults);
 
 // Writes `camera` (and `map` when given) to `path` atomically; Error(path, ...) on failure.
 struct CameraFileMap {
