@@ -57,6 +57,10 @@ struct TerrainHandle {
     std::unique_ptr<app::RenderSession> session;
     const MethodEntry* row = nullptr;
     std::unique_ptr<TerrainMethod> method;
+    // The camera of the last view and its arguments: a loop over one view
+    // skips make_camera, whose default view scans the terrain's heights.
+    std::string camera_key;
+    Camera camera;
 
     // Destroys the session. Views release the GL context after drawing
     // (ReleaseGlContext): the GL objects are deleted in it, so it is made
@@ -143,15 +147,22 @@ struct ViewArgs {
     app::LookArgs looks;
     std::string save_camera;
 
+    std::string key; // the arguments as text; empty for a camera file (read each time)
+
     ViewArgs(const py::object& size, const py::object& camera_source, const py::dict& view) {
         CLI::App app{"overflight.render"};
         app::add_camera_options(app, camera);
         app::add_method_options(app, methods);
         app::add_look_options(app, looks);
         app.add_option("--save-camera", save_camera);
-        parse(app, arguments_of(view));
+        const std::vector<std::string> args = arguments_of(view);
+        parse(app, args);
         camera.size = size_text(size);
         set_camera_source(camera_source, camera);
+        if (camera.camera_file.empty()) {
+            key = camera.size + "\n" + camera.camera_text;
+            for (const std::string& a : args) key += "\n" + a;
+        }
     }
 
     // The camera for `data` (render's default size 1280x720).
@@ -161,7 +172,7 @@ struct ViewArgs {
 // What a render hands back to Python: owned buffers, moved into NumPy arrays.
 struct Frame {
     int width = 0, height = 0;
-    std::vector<std::uint8_t> color;
+    std::unique_ptr<std::uint8_t[]> color; // not zeroed first: it is copied into at once
     std::vector<float> depth;
 };
 
@@ -170,6 +181,12 @@ py::array_t<T> array_of(std::vector<T>&& v, std::vector<py::ssize_t> shape) {
     auto* owned = new std::vector<T>(std::move(v));
     py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
     return py::array_t<T>(shape, owned->data(), free_when_done);
+}
+
+py::array_t<std::uint8_t> array_of(std::unique_ptr<std::uint8_t[]>&& bytes, std::vector<py::ssize_t> shape) {
+    std::uint8_t* owned = bytes.release();
+    py::capsule free_when_done(owned, [](void* p) { delete[] static_cast<std::uint8_t*>(p); });
+    return py::array_t<std::uint8_t>(shape, owned, free_when_done);
 }
 
 // Leaves no EGL context current on this thread when the scope ends, so that
@@ -190,7 +207,12 @@ std::string session_key(const std::string& method, const app::MethodOptions& m) 
 Frame render_view(TerrainHandle& t, const std::string& method_name, const ViewArgs& view, bool want_depth) {
     std::lock_guard lock(t.mutex);
     const ReleaseGlContext release; // before the lock is left
-    const Camera camera = view.make(t.data);
+    if (view.key.empty() || view.key != t.camera_key) {
+        t.camera_key.clear();
+        t.camera = view.make(t.data);
+        t.camera_key = view.key;
+    }
+    const Camera camera = t.camera;
     const std::string key = session_key(method_name, view.methods);
     if (key != t.session_key || !t.session) {
         const MethodEntry* row = find_terrain_method(method_name);
@@ -213,9 +235,9 @@ Frame render_view(TerrainHandle& t, const std::string& method_name, const ViewAr
     f.width = camera.width;
     f.height = camera.height;
     const ColorImage& c = *rendered.color;
-    f.color.resize(c.pixels.size() * 3);
     static_assert(sizeof(Rgb8) == 3);
-    std::memcpy(f.color.data(), c.pixels.data(), f.color.size());
+    f.color.reset(new std::uint8_t[c.pixels.size() * 3]);
+    std::memcpy(f.color.get(), c.pixels.data(), c.pixels.size() * 3);
     if (want_depth) f.depth = rendered.depth->pixels;
     return f;
 }

@@ -25,27 +25,7 @@ constexpr const char* kRainier = "srtm/mt_rainier_90m.tif";
 constexpr double kParadiseLon = -121.7353, kParadiseLat = 46.7860;
 constexpr double kSummitLon = -121.7603, kSummitLat = 46.8529;
 
-// World X, Z of lon/lat on `data`'s grid, by OGR and GDAL's inverse geotransform.
-glm::dvec2 gdal_world_of_lonlat(const DataSet& data, double lon, double lat) {
-    OGRSpatialReference wgs84, utm;
-    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    wgs84.importFromEPSG(4326);
-    utm.importFromWkt(data.info.crs_wkt.c_str());
-    OGRCoordinateTransformation* ct = OGRCreateCoordinateTransformation(&wgs84, &utm);
-    double x = lon, y = lat;
-    EXPECT_TRUE(ct && ct->Transform(1, &x, &y));
-    OGRCoordinateTransformation::DestroyCT(ct);
-    double inv[6];
-    EXPECT_TRUE(GDALInvGeoTransform(const_cast<double*>(data.info.geotransform.data()), inv));
-    double col = 0, row = 0;
-    GDALApplyGeoTransform(inv, x, y, &col, &row);
-    // The sample of pixel (row, col) stands at its centre (DESIGN sec. 4).
-    const double hs = data.terrain.h_scale();
-    return {(col - 0.5) * hs, (row - 0.5) * hs};
-}
-
-// UTM easting, northing of lon/lat in `data`'s CRS.
+// UTM easting, northing of lon/lat in `data`'s CRS, by OGR.
 glm::dvec2 utm_of_lonlat(const DataSet& data, double lon, double lat) {
     OGRSpatialReference wgs84, utm;
     wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
@@ -57,6 +37,18 @@ glm::dvec2 utm_of_lonlat(const DataSet& data, double lon, double lat) {
     EXPECT_TRUE(ct && ct->Transform(1, &x, &y));
     OGRCoordinateTransformation::DestroyCT(ct);
     return {x, y};
+}
+
+// World X, Z of lon/lat on `data`'s grid, by OGR and GDAL's inverse geotransform.
+glm::dvec2 gdal_world_of_lonlat(const DataSet& data, double lon, double lat) {
+    const glm::dvec2 utm = utm_of_lonlat(data, lon, lat);
+    double inv[6];
+    EXPECT_TRUE(GDALInvGeoTransform(const_cast<double*>(data.info.geotransform.data()), inv));
+    double col = 0, row = 0;
+    GDALApplyGeoTransform(inv, utm.x, utm.y, &col, &row);
+    // The sample of pixel (row, col) stands at its centre (DESIGN sec. 4).
+    const double hs = data.terrain.h_scale();
+    return {(col - 0.5) * hs, (row - 0.5) * hs};
 }
 
 // The camera file written for `position_args` on Rainier (32x24 unless they give --size).
