@@ -202,18 +202,21 @@ void run_fly(const FlyOptions& o) {
     wo.visible = !o.hidden;
     const std::filesystem::path shot_base = o.screenshot.empty() ? std::filesystem::path("overflight.png")
                                                                  : std::filesystem::path(o.screenshot);
-    const gl::ScreenshotSink save = [&](const ColorImage& image, int index) {
+    const gl::ScreenshotSink save = [&](const ColorImage& image, const Camera& camera, int index) {
         if (index < 0) {
             if (!o.screenshot.empty()) write_png(o.screenshot, image);
             return;
         }
-        // P: name-NNN.png beside --screenshot, or overflight-NNN.png here.
+        // P: name-NNN.png beside --screenshot, or overflight-NNN.png here,
         char suffix[16];
         std::snprintf(suffix, sizeof suffix, "-%03d", index);
         std::filesystem::path p = shot_base;
         p.replace_filename(shot_base.stem().string() + suffix + ".png");
         write_png(p.string(), image);
-        std::fprintf(stderr, "overflight: saved %s\n", p.string().c_str());
+        // and the frame's camera beside it, for render --camera.
+        const std::string json = std::filesystem::path(p).replace_extension(".json").string();
+        write_camera_file(json, camera, camera_map_of(camera, data));
+        std::fprintf(stderr, "overflight: saved %s and %s\n", p.string().c_str(), json.c_str());
     };
     const gl::FlightResult result = gl::run_flight_window(data, wo, methods, save);
     if (!o.record.empty()) write_flight_record(o.record, result.record);
