@@ -66,7 +66,9 @@ glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit) {
     return env.ambient + env.sun_color * lambert;
 }
 
-void light_colors(const Terrain& t, const Environment& env, const ShadowCeiling* shadow, std::vector<Rgb8>& out) {
+void light_colors(const Terrain& t, const Environment& env, const ShadowCeiling* shadow, std::vector<Rgb8>& out,
+                  LightOutput output) {
+    const bool light_only = output == LightOutput::Light;
     out.resize(t.colors().size());
     const glm::vec3 sun = unit_sun(env);
     const bool day = sun.y > 0;
@@ -90,7 +92,7 @@ void light_colors(const Terrain& t, const Environment& env, const ShadowCeiling*
             if (lit) lambert = std::max((sun.y - dhdx * sun.x - dhdz * sun.z) / std::sqrt(dhdx * dhdx + 1.0f + dhdz * dhdz), 0.0f);
             const glm::vec3 light = env.ambient + env.sun_color * lambert;
             const std::size_t i = t.index(row, col);
-            const Rgb8 a = t.colors()[i];
+            const Rgb8 a = light_only ? Rgb8{128, 128, 128} : t.colors()[i];
             out[i] = Rgb8{channel(a.r, light.r), channel(a.g, light.g), channel(a.b, light.b)};
         }
     });
@@ -102,6 +104,11 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     lit_for_ = env;
     ++version_;
     baked_ = lighting_is_baked(env);
+    if (baked_ && output_ == LightOutput::Light) {
+        colors_.assign(terrain_.colors().size(), Rgb8{128, 128, 128});
+        baked_ = false; // the light of 1 is what to paint
+        return &colors_;
+    }
     if (baked_) return nullptr;
     const ShadowCeiling* shadow = nullptr;
     if (env.shadows) {
@@ -110,7 +117,7 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
         shadow_valid_ = true;
         shadow = &shadow_;
     }
-    light_colors(terrain_, env, shadow, colors_);
+    light_colors(terrain_, env, shadow, colors_, output_);
     return &colors_;
 }
 

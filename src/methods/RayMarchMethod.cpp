@@ -17,7 +17,11 @@ namespace {
 class RayMarchMethod final : public TerrainMethod {
 public:
     explicit RayMarchMethod(const MethodContext& c)
-        : marcher_(c.terrain, env_), lighting_(c.terrain), surface_(c.settings.raycast.surface) {}
+        : marcher_(c.terrain, env_),
+          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors),
+          surface_(c.settings.raycast.surface) {
+        marcher_.set_imagery(c.terrain.imagery());
+    }
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();

@@ -18,7 +18,12 @@ namespace {
 class VoxelMethod final : public TerrainMethod {
 public:
     explicit VoxelMethod(const MethodContext& c)
-        : caster_(c.terrain), lighting_(c.terrain), options_(c.settings.raycast) {}
+        : caster_(c.terrain),
+          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors),
+          options_(c.settings.raycast) {
+        // Imagery finer than the samples: the cast paints light, the imagery the albedo.
+        caster_.set_imagery(c.terrain.imagery());
+    }
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
