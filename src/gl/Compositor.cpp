@@ -35,6 +35,7 @@ void depth_test_on() {
 
 Compositor::Compositor(const Terrain& terrain, const Scene& scene) : terrain_(terrain), vehicle_(terrain) {
     objects_.set_scene(scene, terrain);
+    if (const ImageryPyramid* imagery = terrain.imagery()) imagery_texture_.upload(*imagery);
 }
 
 void Compositor::prepare(ResidentSurface surface) {
@@ -66,6 +67,8 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
     if (camera.width != target.width() || camera.height != target.height())
         throw Error("camera", "image size differs from the render target");
     frame_.set_shadow(terrain_shadow(environment, timer));
+    imagery_texture_.bind();
+    frame_.set_imagery(imagery_texture_.uniform());
     frame_.update(camera, environment, terrain_);
     frame_.bind();
     target.bind();

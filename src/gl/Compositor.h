@@ -41,6 +41,7 @@
 #include "gl/FrameUniforms.h"
 #include "gl/ObjectRenderer.h"
 #include "gl/RenderTarget.h"
+#include "gl/ImageryTexture.h"
 #include "gl/ShadowCeilingTexture.h"
 #include "gl/SkyPass.h"
 #include "gl/StepTimer.h"
@@ -100,6 +101,7 @@ private:
     ShadowCeiling shadow_;
     bool shadow_valid_ = false;
     ShadowCeilingTexture shadow_texture_;
+    ImageryTexture imagery_texture_;
     SkyPass sky_;
     ObjectRenderer objects_;
     FlightVehicle vehicle_;
