@@ -61,7 +61,6 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
                 if (h > z) { // line 8
                     const int ci = std::lround(y / hs), cj = std::lround(x / hs);
                     const Rgb8 c = colors ? (*colors)[terrain.index(ci, cj)] : terrain.color(ci, cj); // line 9
-                    const int level = imagery ? mip_level_for_footprint(dist / dpk, texel, levels) : 0;
                     do {
                         const int row = H - 1 - j;
                         // Fog at the eye distance of this pixel's ray at this slice.
@@ -71,6 +70,9 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
                             // The light times the imagery where this pixel's ray meets the
                             // sample's height, within the cell it stands for (ImageryTexels.h).
                             const double d = m > 0 ? std::clamp((camera.eye.y - h) / m, dist - hs, dist) : dist;
+                            // The longer side of the pixel's trace on level ground.
+                            const double footprint = dist / (dpk * (m > 0 ? std::max(m, 1.0 / 1024.0) : 1.0));
+                            const int level = mip_level_for_footprint(footprint, texel, levels);
                             lit = modulate_light(c, imagery->nearest(camera.eye.x + d * (F.x + a * R.x),
                                                                      camera.eye.z + d * (F.z + a * R.z), level));
                         }

@@ -62,7 +62,7 @@ int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int 
         if (h > z) {
             std::uint32_t col = s.terrain.colors[ci];
             if (s.imagery.bound()) // the light times the imagery at the ray's ground point
-                col = modulate_light(col, s.imagery.at(float(x * hs), float(y * hs), s.imagery.slice_level(k)));
+                col = modulate_light(col, s.imagery.at(float(x * hs), float(y * hs), s.imagery.level(k, row)));
             do {
                 const double dist = std::sqrt(v * v * lat * lat + (z - ey) * (z - ey));
                 out_c[row] = s.hit_color(col, float(dist), float(z - ey), float((v * lat_sun + (z - ey) * s.sun.y) / dist));
