@@ -21,32 +21,16 @@ namespace overflight {
 namespace {
 
 // Multiplies the light painted into a block by the imagery under each
-// painted pixel (ImageryTexels.h: drape_column's runs), row by row as the
-// block's scratch is laid out; column i's plane runs along F + a_i R, F and
-// R horizontal for the shear camera.
+// painted pixel (ImageryTexels.h: drape_column); column i's plane runs along
+// F + a_i R, F and R horizontal for the shear camera.
 void apply_imagery(const FloatingHorizonState& s, const Camera& camera, int c0, const ShearBlock& blk,
                    std::uint32_t* color, const std::uint32_t* slice) {
     const glm::dvec3 F = camera.forward(), R = camera.right();
     const DrapeFrame frame{&s.imagery, s.frame.slices.df.data(), s.frame.slices.df[0], s.frame.rows.m.data(),
                            float(camera.eye.x), float(camera.eye.z)};
-    float dir_x[kShearBlock], dir_z[kShearBlock];
-    DrapeRun runs[kShearBlock];
-    int rows = 0;
     for (int i = 0; i < blk.n; ++i) {
         const double a = s.frame.columns.a[std::size_t(c0 + i)];
-        dir_x[i] = float(F.x + a * R.x);
-        dir_z[i] = float(F.z + a * R.z);
-        rows = std::max(rows, blk.jend[i]);
-    }
-    for (int j = 0; j < rows; ++j) {
-        std::uint32_t* row_c = color + std::size_t(j) * kShearBlock;
-        const std::uint32_t* row_s = slice + std::size_t(j) * kShearBlock;
-        for (int i = 0; i < blk.n; ++i) {
-            if (j >= blk.jend[i]) continue;
-            // Slices only grow up a column: a new index is a new run.
-            if (row_s[i] != runs[i].k) runs[i] = drape_run(frame, slice + i, j, blk.jend[i], kShearBlock);
-            row_c[i] = drape_pixel(frame, runs[i], dir_x[i], dir_z[i], j, row_c[i]);
-        }
+        drape_column(frame, float(F.x + a * R.x), float(F.z + a * R.z), color + i, slice + i, blk.jend[i], kShearBlock);
     }
 }
 

@@ -58,8 +58,4 @@ void ImageryTexels::prepare_rows(const float* row_m, int rows) {
         row_log2_[std::size_t(j)] = row_m[j] < 0.0f ? -std::log2(std::max(-row_m[j], kFlattest)) : 0.0f;
 }
 
-int ImageryTexels::level_of(double footprint) const {
-    return pyramid_ ? mip_level_for_footprint(footprint, pyramid_->texel_size(0), pyramid_->levels()) : 0;
-}
-
 } // namespace overflight

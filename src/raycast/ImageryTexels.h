@@ -40,8 +40,6 @@ public:
         const float l = slice_log2_[std::size_t(k)] + row_log2_[std::size_t(j)] + 0.5f;
         return l < 1.0f ? 0 : std::min(int(l), last_level_);
     }
-    // The mip level of a footprint `footprint` world units wide.
-    int level_of(double footprint) const;
 
     // The texel of `level` under world (x, z), clamped to the imagery's edge.
     Rgba8 at(float x, float z, int level) const {
