@@ -551,7 +551,7 @@ void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long lon
 }
 
 DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::string& driver_name,
-                     const std::string& color_path, int max_direct_size) {
+                     const std::string& color_path, int max_direct_size, std::size_t imagery_bytes) {
     DataSet data;
     TerrainInfo& info = data.info;
     info.source = path;
@@ -603,7 +603,7 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
         shade_by_elevation(data.terrain, 0.0f);
         ImageryTarget target{grid.rows, grid.cols, hs, grid.georeferenced, {}, grid.wkt};
         std::copy(grid.gt, grid.gt + 6, target.gt.begin());
-        ImageryLoad imagery = load_imagery(color_path, target);
+        ImageryLoad imagery = load_imagery(color_path, target, imagery_bytes);
         if (imagery.pyramid) {
             blend_over_terrain_colors(*imagery.pyramid, data.terrain);
             colors_from_imagery(*imagery.pyramid, data.terrain);
@@ -624,13 +624,14 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
 
 } // namespace
 
-DataSet load_gdal_raster(const std::string& path, const std::string& color_path, int max_direct_size) {
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path, int max_direct_size,
+                         std::size_t imagery_bytes) {
     gdal::Dataset src = gdal::open_raster(path);
     GDALDriverH driver = GDALGetDatasetDriver(src.get());
     const std::string driver_name = driver ? GDALGetDriverShortName(driver) : "?";
     check_declared_size(src.get(), path, driver_name);
     try {
-        return load_checked(src.get(), path, driver_name, color_path, max_direct_size);
+        return load_checked(src.get(), path, driver_name, color_path, max_direct_size, imagery_bytes);
     } catch (const std::bad_alloc&) {
         // Sizes were checked against the machine's memory, not against a
         // process limit (ulimit -v) or what other programs hold.

@@ -183,3 +183,31 @@ TEST(Imagery, InfoReportsTheImagerysSizeResolutionAndCoverage) {
     EXPECT_NE(r.out.find("imagery_resolution: 28.4"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("imagery_coverage: 0.99"), std::string::npos) << r.out;
 }
+
+TEST(Imagery, ImageryBeyondTheMemoryBoundIsDecimatedWithAWarning) {
+    OVERFLIGHT_SHARED_FILE(dem, "paired/olinda/olinda_dem_utm25s.tif");
+    test::ScratchDir dir;
+    const DataSet plain = load_terrain(dem);
+    const std::array<double, 6>& gt = plain.info.geotransform;
+    // 15 m pixels over the DEM: 666x666 texels, 2.4 MB with their mips.
+    const int n = 6 * plain.terrain.cols();
+    Image2D<float> grey(n, n);
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) grey.at(c, r) = float(50 + (r * 7 + c * 13) % 200);
+    RasterGeoreference g;
+    g.geotransform = std::array<double, 6>{gt[0], gt[1] / 6.0, 0, gt[3], 0, gt[5] / 6.0};
+    g.crs = plain.info.crs_wkt;
+    const std::string color = dir / "fine.tif";
+    write_geotiff(color, grey, g);
+    LoadOptions options;
+    options.color_path = color;
+    options.imagery_memory_mib = 1;
+    const DataSet d = load_terrain(dem, options);
+    ASSERT_NE(d.terrain.imagery(), nullptr);
+    EXPECT_EQ(d.terrain.imagery()->level(0).width, n / 2);
+    ASSERT_EQ(d.info.warnings.size(), 1u);
+    EXPECT_EQ(d.info.warnings[0], color + ": imagery of more than 1 MiB; read decimated by 2 to 333x333");
+    const test::RunResult r = test::run_overflight("info '" + dem + "' --color '" + color + "' --imagery-memory-mib 0");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err, "overflight: --imagery-memory-mib: 0 is not in 1..1048576\n");
+}
