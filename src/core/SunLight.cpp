@@ -67,7 +67,8 @@ glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit) {
 }
 
 void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
-                  std::vector<Rgb8>& out) {
+                  std::vector<Rgb8>& out, LightOutput output) {
+    const bool light_only = output == LightOutput::Light;
     out.resize(t.colors().size());
     const glm::vec3 sun = unit_sun(env);
     const bool day = sun.y > 0;
@@ -108,7 +109,10 @@ void light_colors(const Terrain& t, const PackedNormals& normals, const Environm
         }
         const auto* a = reinterpret_cast<const std::uint8_t*>(albedo);
         auto* d = reinterpret_cast<std::uint8_t*>(dst);
-        for (std::size_t i = 0; i < count; ++i) d[i] = channel(a[i], LL[i]);
+        if (light_only)
+            for (std::size_t i = 0; i < count; ++i) d[i] = channel(128, LL[i]);
+        else
+            for (std::size_t i = 0; i < count; ++i) d[i] = channel(a[i], LL[i]);
     });
 }
 
@@ -118,6 +122,11 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     lit_for_ = env;
     ++version_;
     baked_ = lighting_is_baked(env);
+    if (baked_ && output_ == LightOutput::Light) {
+        colors_.assign(terrain_.colors().size(), Rgb8{128, 128, 128});
+        baked_ = false; // the light of 1 is what to paint
+        return &colors_;
+    }
     if (baked_) return nullptr;
     const ShadowCeiling* shadow = nullptr;
     if (env.shadows) {
@@ -127,7 +136,7 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
         shadow = &shadow_;
     }
     if (normals_.packed.empty()) normals_ = pack_normals(terrain_);
-    light_colors(terrain_, normals_, env, shadow, colors_);
+    light_colors(terrain_, normals_, env, shadow, colors_, output_);
     return &colors_;
 }
 

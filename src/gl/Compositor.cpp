@@ -35,6 +35,7 @@ void depth_test_on() {
 
 Compositor::Compositor(const Terrain& terrain, const Scene& scene) : terrain_(terrain), vehicle_(terrain) {
     objects_.set_scene(scene, terrain);
+    if (const ImageryPyramid* imagery = terrain.imagery()) imagery_texture_.upload(*imagery);
 }
 
 void Compositor::prepare(ResidentSurface surface) {
@@ -67,6 +68,8 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
         throw Error("camera", "image size differs from the render target");
     const glm::vec4 shadow = terrain_shadow(environment, timer);
     frame_.set_shadow(shadow);
+    imagery_texture_.bind();
+    frame_.set_imagery(imagery_texture_.uniform());
     frame_.update(camera, environment, terrain_);
     object_shadow_.update(shadow.x > 0, glm::vec3(frame_.block().sun_dir), objects_, frame_.block());
     object_shadow_.bind();

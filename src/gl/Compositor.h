@@ -47,6 +47,7 @@
 #include "gl/ObjectRenderer.h"
 #include "gl/ObjectShadowMap.h"
 #include "gl/RenderTarget.h"
+#include "gl/ImageryTexture.h"
 #include "gl/ShadowCeilingTexture.h"
 #include "gl/ShadowScreenPass.h"
 #include "gl/SkyPass.h"
@@ -110,6 +111,7 @@ private:
     ShadowCeilingTexture shadow_texture_;
     ObjectShadowMap object_shadow_;
     ShadowScreenPass object_shadow_pass_;
+    ImageryTexture imagery_texture_;
     SkyPass sky_;
     WaterPlane water_{terrain_};
     ObjectRenderer objects_;

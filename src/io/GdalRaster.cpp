@@ -5,12 +5,14 @@
 #include "io/GdalRaster.h"
 
 #include "core/Error.h"
+#include "core/ImageryFallback.h"
 #include "core/Shading.h"
 #include "core/Terrain.h"
 #include "io/Gdal.h"
 #include "io/GdalReducedReads.h"
 #include "io/GdalSource.h"
 #include "io/HeightMapping.h"
+#include "io/ImageryRaster.h"
 #include "io/UsgsDemHeader.h"
 
 #include <cpl_conv.h>
@@ -172,50 +174,14 @@ struct ColorResult {
     std::string description;
 };
 
-// Resamples the color raster onto the DEM grid (DESIGN sec. 4: `--color FILE`).
-ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
+// Resamples the color raster onto the DEM grid (DESIGN sec. 4: `--color FILE`);
+// where it does not cover the grid (ImageryFallback.h) the terrain keeps the
+// colors it holds, blended by the warp's coverage alpha.
+ColorResult color_on_grid(const std::string& color_path, const Grid& dem, const std::vector<Rgb8>& fallback) {
     gdal::Dataset src = gdal::open_raster(color_path);
-    const int bands = GDALGetRasterCount(src.get());
-    std::vector<int> pick;
-    int r = 0, g = 0, b = 0;
-    for (int k = 1; k <= bands; ++k) {
-        const GDALColorInterp ci = GDALGetRasterColorInterpretation(GDALGetRasterBand(src.get(), k));
-        if (ci == GCI_RedBand && !r) r = k;
-        if (ci == GCI_GreenBand && !g) g = k;
-        if (ci == GCI_BlueBand && !b) b = k;
-    }
     std::string bands_used;
-    std::vector<std::string> opts;
-    GDALRasterBandH first = GDALGetRasterBand(src.get(), 1);
-    const bool palette = bands == 1 && GDALGetRasterColorTable(first) != nullptr;
-    if (r && g && b) {
-        pick = {r, g, b};
-        bands_used = "RGB bands";
-    } else if (bands >= 6) {
-        pick = {3, 2, 1}; // Landsat TM/ETM+: bands 3, 2, 1 are red, green, blue
-        bands_used = "bands 3,2,1";
-    } else if (bands >= 3) {
-        pick = {1, 2, 3};
-        bands_used = "bands 1,2,3";
-    } else if (palette) {
-        pick = {1};
-        opts = {"-expand", "rgb"};
-        bands_used = "palette";
-    } else {
-        pick = {1};
-        bands_used = "band 1 as grey";
-    }
-    for (int k : pick) {
-        opts.push_back("-b");
-        opts.push_back(std::to_string(k));
-    }
     bool rescaled = false;
-    if (GDALGetRasterDataType(GDALGetRasterBand(src.get(), pick[0])) != GDT_Byte) {
-        // Each band stretched from its own min..max: a 16-bit orthophoto or a
-        // reflectance raster would otherwise be black or clipped.
-        opts.insert(opts.end(), {"-ot", "Byte", "-scale"});
-        rescaled = true;
-    }
+    std::vector<std::string> opts = color_band_options(src.get(), bands_used, rescaled);
     double cgt[6];
     const bool color_geo = GDALGetGeoTransform(src.get(), cgt) == CE_None && GDALGetSpatialRef(src.get()) != nullptr;
     const bool warp = color_geo && dem.georeferenced && !dem.wkt.empty();
@@ -238,27 +204,40 @@ ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
         picked = gdal::warp(picked.get(),
                             {"-t_srs", dem.wkt, "-te", fmt(xmin, 17), fmt(std::min(ymin, ymax), 17), fmt(xmax, 17),
                              fmt(std::max(ymin, ymax), 17), "-ts", std::to_string(dem.cols), std::to_string(dem.rows),
-                             "-r", method, "-ovr", "NONE"},
+                             "-r", method, "-ovr", "NONE", "-dstalpha"},
                             color_path);
         how = std::string("warped onto the DEM grid (") + method + ")";
     }
     const int out_bands = GDALGetRasterCount(picked.get());
+    const int colour_bands = warp ? out_bands - 1 : out_bands;
     std::vector<std::uint8_t> channel(std::size_t(dem.rows) * std::size_t(dem.cols));
+    std::vector<std::uint8_t> alpha(channel.size(), 255);
     ColorResult result;
     result.image.resize(dem.cols, dem.rows);
+    auto read = [&](int band_index, std::vector<std::uint8_t>& into) {
+        CPLErrorReset();
+        if (GDALRasterIO(GDALGetRasterBand(picked.get(), band_index), GF_Read, 0, 0, dem.cols, dem.rows, into.data(),
+                         dem.cols, dem.rows, GDT_Byte, 0, 0) != CE_None)
+            throw Error(color_path, "unreadable raster: " + gdal::last_error("read failed"));
+    };
+    if (warp) read(out_bands, alpha);
     bool any = false;
     for (int c = 0; c < 3; ++c) {
-        GDALRasterBandH band = GDALGetRasterBand(picked.get(), std::min(c + 1, out_bands));
-        CPLErrorReset();
-        if (GDALRasterIO(band, GF_Read, 0, 0, dem.cols, dem.rows, channel.data(), dem.cols, dem.rows, GDT_Byte, 0, 0) !=
-            CE_None)
-            throw Error(color_path, "unreadable raster: " + gdal::last_error("read failed"));
+        read(std::min(c + 1, colour_bands), channel);
         for (std::size_t i = 0; i < channel.size(); ++i) {
             (&result.image.pixels[i].r)[c] = channel[i];
-            any = any || channel[i] != 0;
+            any = any || (channel[i] != 0 && alpha[i] != 0);
         }
     }
     if (!any) throw Error(color_path, "color raster is entirely black on the terrain (does it overlap the DEM?)");
+    for (std::size_t i = 0; i < alpha.size(); ++i) {
+        if (alpha[i] == 255) continue;
+        const float w = float(alpha[i]) / 255.0f;
+        Rgb8& p = result.image.pixels[i];
+        const Rgb8 f = fallback[i];
+        for (int c = 0; c < 3; ++c)
+            (&p.r)[c] = std::uint8_t(std::lround(float((&p.r)[c]) * w + float((&f.r)[c]) * (1.0f - w)));
+    }
     result.description = color_path + " (" + bands_used + (rescaled ? ", rescaled to 8 bits" : "") + ", " + how + ")";
     return result;
 }
@@ -572,7 +551,7 @@ void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long lon
 }
 
 DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::string& driver_name,
-                     const std::string& color_path, int max_direct_size) {
+                     const std::string& color_path, int max_direct_size, std::size_t imagery_bytes) {
     DataSet data;
     TerrainInfo& info = data.info;
     info.source = path;
@@ -620,9 +599,22 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     quantise_heights(grid.z, mapping, data.terrain.heights());
 
     if (!color_path.empty()) {
-        ColorResult color = color_on_grid(color_path, grid);
-        data.terrain.colors() = std::move(color.image.pixels);
-        info.color_source = color.description;
+        // The elevation ramp first: the fallback wherever the imagery does not cover the terrain.
+        shade_by_elevation(data.terrain, 0.0f);
+        ImageryTarget target{grid.rows, grid.cols, hs, grid.georeferenced, {}, grid.wkt};
+        std::copy(grid.gt, grid.gt + 6, target.gt.begin());
+        ImageryLoad imagery = load_imagery(color_path, target, imagery_bytes);
+        if (imagery.pyramid) {
+            blend_over_terrain_colors(*imagery.pyramid, data.terrain);
+            colors_from_imagery(*imagery.pyramid, data.terrain);
+            data.terrain.set_imagery(std::move(imagery.pyramid));
+            info.color_source = imagery.description;
+            if (!imagery.warning.empty()) info.warnings.push_back(imagery.warning);
+        } else {
+            ColorResult color = color_on_grid(color_path, grid, data.terrain.colors());
+            data.terrain.colors() = std::move(color.image.pixels);
+            info.color_source = color.description;
+        }
     } else {
         shade_by_elevation(data.terrain, 0.0f);
         info.color_source = "elevation ramp + hillshade";
@@ -632,13 +624,14 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
 
 } // namespace
 
-DataSet load_gdal_raster(const std::string& path, const std::string& color_path, int max_direct_size) {
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path, int max_direct_size,
+                         std::size_t imagery_bytes) {
     gdal::Dataset src = gdal::open_raster(path);
     GDALDriverH driver = GDALGetDatasetDriver(src.get());
     const std::string driver_name = driver ? GDALGetDriverShortName(driver) : "?";
     check_declared_size(src.get(), path, driver_name);
     try {
-        return load_checked(src.get(), path, driver_name, color_path, max_direct_size);
+        return load_checked(src.get(), path, driver_name, color_path, max_direct_size, imagery_bytes);
     } catch (const std::bad_alloc&) {
         // Sizes were checked against the machine's memory, not against a
         // process limit (ulimit -v) or what other programs hold.

@@ -7,6 +7,7 @@
 #include "core/DataSet.h"
 #include "io/TerrainReport.h"
 
+#include <cstddef>
 #include <string>
 
 namespace overflight {
@@ -43,7 +44,10 @@ namespace overflight {
 // needs more memory than the machine has (all checked before reading any
 // sample) or than the process may use, an elevation or extent beyond
 // kWorldLimit (core/Terrain.h), or one that is entirely no-data.
-DataSet load_gdal_raster(const std::string& path, const std::string& color_path = "", int max_direct_size = 0);
+// A color raster finer than the DEM is kept at its own resolution
+// (io/ImageryRaster.h: load_imagery), read decimated beyond `imagery_bytes`.
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path = "", int max_direct_size = 0,
+                         std::size_t imagery_bytes = std::size_t(4) << 30);
 
 // What `overflight info` reports of the raster load_gdal_raster would load at
 // full resolution, in about a second whatever its size: size, grid after

@@ -22,6 +22,8 @@
 #include "core/Terrain.h"
 #include "raycast/RaycastOptions.h"
 
+#include "core/ImageryPyramid.h"
+
 #include <glm/mat4x4.hpp>
 
 #include <vector>
@@ -35,6 +37,11 @@ public:
     // Paints `colors` (one per sample, e.g. sun-lit; must outlive the
     // marcher) instead of the terrain's own; null: the terrain's.
     void set_colors(const std::vector<Rgb8>* colors) { colors_ = colors; }
+    // Imagery finer than the samples (null: none): the painted colors are
+    // then each sample's light (128 is 1), times the imagery's nearest texel
+    // at the hit point on the mip level of the pixel's footprint
+    // (raycast/ImageryTexels.h).
+    void set_imagery(const ImageryPyramid* imagery) { imagery_ = imagery; }
 
     // Renders every pixel (parallel over rows). Resizes the images to the camera.
     void render(const Camera& camera, SurfaceModel surface, ColorImage& color, DepthImage& depth) const;
@@ -69,6 +76,7 @@ private:
     const Terrain& terrain_;
     const Environment& env_;
     const std::vector<Rgb8>* colors_ = nullptr;
+    const ImageryPyramid* imagery_ = nullptr;
 };
 
 } // namespace overflight

@@ -29,6 +29,7 @@
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
+#include "core/SunLight.h"
 #include "core/Terrain.h"
 #include "raycast/RaycastOptions.h"
 
@@ -40,9 +41,12 @@ class WaterPass {
 public:
     // Keeps a reference to terrain (it must outlive this object).
     explicit WaterPass(const Terrain& terrain) : terrain_(terrain) {}
-    // The sample colors the reflections and the bottom show (e.g. sun-lit,
-    // as the caster paints; must outlive their use); null: the terrain's.
-    void set_colors(const std::vector<Rgb8>* colors) { colors_ = colors; }
+    // The sample colors the reflections and the bottom show: `colors` as the
+    // caster paints them (sun-lit; null: the terrain's; must outlive their
+    // use), except over imagery finer than the samples, whose caster paints
+    // light alone: then the terrain's own colors (the imagery averaged per
+    // sample) lit for `env` here.
+    void set_colors(const std::vector<Rgb8>* colors, const Environment& env);
 
     // Floods `color`/`depth` (the caster's images for `camera`, its size)
     // to env.water_level when env.water is on; returns the water pixels.
@@ -52,6 +56,7 @@ public:
 private:
     const Terrain& terrain_;
     const std::vector<Rgb8>* colors_ = nullptr;
+    TerrainLighting albedo_lighting_{terrain_}; // used over imagery only
 };
 
 } // namespace overflight
