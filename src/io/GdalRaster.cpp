@@ -33,9 +33,6 @@ namespace overflight {
 
 namespace {
 
-// Marks no-data inside our float buffers: far below any elevation on Earth,
-// exactly representable, and distinct from every source's own no-data value.
-constexpr float kNoData = -1.0e30f;
 
 std::string fmt(double v, int precision = 6) {
     std::ostringstream o;
@@ -523,8 +520,12 @@ double to_square_metric_cells(Grid& grid, const MetricGrid& m, int factor, const
         } else if (m.finer_cells) {
             warp_opts.insert(warp_opts.end(), {"-tr", fmt(m.res, 17), fmt(m.res, 17)});
         }
-        warp_opts.insert(warp_opts.end(), {"-r", "bilinear", "-srcnodata", fmt(kNoData, 9), "-dstnodata",
-                                           fmt(kNoData, 9), "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA"});
+        const std::vector<std::string> common = metric_warp_options();
+        warp_opts.insert(warp_opts.end(), common.begin(), common.end());
+        warp_opts.insert(warp_opts.end(), {"-srcnodata", fmt(kNoData, 9)});
+        // A decimated read is rendered, never tiled: GDAL's approximate
+        // transformer saves it a projection per sample.
+        if (factor > 1) warp_opts.insert(warp_opts.end(), {"-et", "0.125"});
         gdal::Dataset source = grid_dataset(grid, path);
         gdal::Dataset warped = gdal::warp(source.get(), warp_opts, path);
         grid = grid_of(warped.get(), path);
@@ -542,19 +543,17 @@ double to_square_metric_cells(Grid& grid, const MetricGrid& m, int factor, const
     return hs * m.metres_per_unit;
 }
 
-// Fills the no-data samples from their valid neighbours (the rest: the lowest
-// valid elevation, never a spike), recording what was done in `info`.
-void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long long source_voids,
-                     bool& integral) {
+// Fills the no-data samples from their valid neighbours (the rest: `lowest`,
+// the lowest valid elevation of the source, never a spike), recording what
+// was done in `info`.
+void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long long source_voids, float lowest,
+                bool& integral) {
     long long missing = 0;
     for (float v : grid.z) missing += v == kNoData;
     if (missing == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
     if (missing > 0) {
         fill_nodata(grid, path);
         // Whatever the search could not reach keeps the lowest valid elevation, never a spike.
-        float lowest = std::numeric_limits<float>::max();
-        for (float v : grid.z)
-            if (v != kNoData) lowest = std::min(lowest, v);
         for (float& v : grid.z)
             if (v == kNoData) v = lowest;
     }
@@ -590,6 +589,16 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     const long long voids = heights_to_metres(grid, src_ds, path, info, integral);
     if (voids == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
     info.metadata = metadata_of(src_ds, path, info.driver);
+    // The height mapping and the colour ramp span the source's elevations:
+    // reprojected and filled values are weighted means of them, so they lie
+    // within, and the windowed tiler (io/WindowedTiler.h), which cannot see
+    // the whole reprojected grid, knows the same range from its first pass.
+    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+    for (float v : grid.z)
+        if (v != kNoData) {
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
 
     const double hs = to_square_metric_cells(grid, metric, factor, path, info);
     if (const std::string problem = horizontal_scale_problem(grid.rows, grid.cols, hs); !problem.empty())
@@ -603,13 +612,8 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
                                 " (overflight tile keeps the full resolution)");
     }
 
-    fill_voids(grid, path, info, voids, integral);
+    fill_voids(grid, path, info, voids, lo, integral);
 
-    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
-    for (float v : grid.z) {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-    }
     const HeightMapping mapping = choose_height_mapping(lo, hi, integral);
     data.terrain = Terrain(grid.rows, grid.cols, float(hs), mapping.v_scale, mapping.y_offset);
     info.georeferenced = grid.georeferenced;
@@ -624,7 +628,8 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
         data.terrain.colors() = std::move(color.image.pixels);
         info.color_source = color.description;
     } else {
-        shade_by_elevation(data.terrain, 0.0f);
+        const auto [world_lo, world_hi] = mapped_range(mapping, lo, hi);
+        shade_by_elevation(data.terrain, 0.0f, world_lo, world_hi);
         info.color_source = "elevation ramp + hillshade";
     }
     return data;

@@ -5,8 +5,15 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 
 namespace overflight {
+
+std::vector<std::string> metric_warp_options() {
+    char nodata[32];
+    std::snprintf(nodata, sizeof nodata, "%.9g", double(kNoData));
+    return {"-r", "bilinear", "-dstnodata", nodata, "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA", "-et", "0"};
+}
 
 double metres_per_unit(const std::string& unit, std::string& name) {
     std::string u = unit;

@@ -7,8 +7,21 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace overflight {
+
+// Marks no-data inside our float buffers: far below any elevation on Earth,
+// exactly representable, and distinct from every source's own no-data value.
+inline constexpr float kNoData = -1.0e30f;
+
+// The gdalwarp options, after the target grid's, with which a raster is
+// reprojected onto square metric cells at full resolution: bilinear, Float32
+// with kNoData outside the source, and GDAL's exact transformer (-et 0)
+// rather than its approximation within 0.125 pixel along each chunk's rows,
+// so that a sample's value does not depend on how the warp is cut in chunks
+// (the whole grid when loaded, a tile's window when tiled).
+std::vector<std::string> metric_warp_options();
 
 struct SrsCloser {
     void operator()(OGRSpatialReferenceH s) const { if (s) OSRDestroySpatialReference(s); }

@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <limits>
 #include <mutex>
+#include <tuple>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -33,8 +34,6 @@ namespace overflight {
 
 namespace {
 
-// No-data in our float windows, as the loader marks it (io/GdalRaster.cpp).
-constexpr float kNoData = -1.0e30f;
 // The loader's first no-data search distance (io/GdalRaster.cpp fill_nodata).
 constexpr int kFillDistance = 256;
 
@@ -157,8 +156,9 @@ void plan_grid(Plan& plan, GDALDatasetH src) {
         hs = px;
     }
     if (!plan.warp.empty()) {
-        plan.warp.insert(plan.warp.end(), {"-of", "VRT", "-r", "bilinear", "-dstnodata", number(kNoData, 9), "-ot",
-                                           "Float32", "-wo", "INIT_DEST=NO_DATA"});
+        const std::vector<std::string> common = metric_warp_options();
+        plan.warp.insert(plan.warp.end(), {"-of", "VRT"});
+        plan.warp.insert(plan.warp.end(), common.begin(), common.end());
         Reader r;
         open_reader(r, plan, true);
         GDALDatasetH w = r.warped.get();
@@ -239,10 +239,7 @@ void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::functi
     plan.hi = all.hi;
     plan.integral = all.integral && plan.warp.empty();
     plan.mapping = choose_height_mapping(plan.lo, plan.hi, plan.integral);
-    std::vector<std::uint16_t> ends;
-    quantise_heights({plan.lo, plan.hi}, plan.mapping, ends);
-    plan.world_lo = plan.mapping.v_scale * float(ends[0]) + plan.mapping.y_offset;
-    plan.world_hi = plan.mapping.v_scale * float(ends[1]) + plan.mapping.y_offset;
+    std::tie(plan.world_lo, plan.world_hi) = mapped_range(plan.mapping, plan.lo, plan.hi);
     std::uint64_t h = kFnvBasis;
     const double header[] = {double(plan.rows), double(plan.cols), plan.h_scale, plan.mapping.v_scale,
                              plan.mapping.y_offset, plan.gt[0], plan.gt[1], plan.gt[2], plan.gt[3], plan.gt[4], plan.gt[5]};

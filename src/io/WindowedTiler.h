@@ -25,12 +25,11 @@
 //     window cannot see the whole raster, and every tile must give a shared
 //     sample the same value);
 //   - a geographic raster, or one with rotated or non-square cells, is read
-//     through a warped VRT (GDALWarp to VRT, the loader's options) whose
-//     blocks are warped on a fixed grid, so a sample's value does not depend
-//     on which tile reads it; the height mapping spans the source's range
-//     (the warped values lie within it) rather than the warped one. Heights
-//     differ from the in-memory warp by GDAL's approximate transformer
-//     (0.125 pixel) on another chunking and by that mapping.
+//     through a warped VRT (GDALWarp to VRT, the loader's options with the
+//     exact transformer, io/GdalSource.h metric_warp_options), so a sample's
+//     value does not depend on which tile reads it; the height mapping and
+//     the colour ramp span the source's range, as the loader's do: the same
+//     tiles, byte for byte;
 //   - index.json's checksum is FNV-1a 64 of the source's elevations in
 //     metres (row by row) and the plan, not of the loaded terrain: it is
 //     known before any tile is cut, as a run in parts needs it.
