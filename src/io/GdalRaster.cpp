@@ -41,11 +41,6 @@ std::string fmt(double v, int precision = 6) {
     return o.str();
 }
 
-std::string lower(std::string s) {
-    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
 std::string srs_name(OGRSpatialReferenceH srs) {
     if (!srs) return {};
     const char* name = OSRGetName(srs);
@@ -77,16 +72,6 @@ constexpr double kLoadBytesPerSample = 16;
 // Samples a survey reads for the elevation range and no-data share: 64 blocks
 // of a tiled GeoTIFF, a few hundred rows of a striped one.
 constexpr long long kSurveySamples = 1LL << 22;
-
-// Record A of a USGS DEM is its first 1024-byte record (Zamri, sec. 3).
-std::string usgs_record_a_text(const std::string& path) {
-    std::string head(1024, ' ');
-    if (FILE* f = std::fopen(path.c_str(), "rb")) {
-        head.resize(std::fread(head.data(), 1, head.size(), f));
-        std::fclose(f);
-    }
-    return head;
-}
 
 struct Grid {
     int rows = 0, cols = 0;
@@ -278,33 +263,6 @@ std::vector<std::pair<std::string, std::string>> metadata_of(GDALDatasetH ds, co
     return out;
 }
 
-// The sizes a raster declares, checked before anything is allocated from them:
-// a few bytes of header can claim billions of samples (a sparse GeoTIFF, a
-// USGS Record A with a false profile count).
-void check_declared_size(GDALDatasetH ds, const std::string& path, const std::string& driver) {
-    if (driver == "USGSDEM") {
-        // GDAL sizes the grid by Record A's profile count; each profile needs a
-        // Record B in the file (USGS DEM Standards Part 2).
-        const long profiles = usgs_profile_count(usgs_record_a_text(path));
-        std::error_code ec;
-        const auto bytes = std::filesystem::file_size(path, ec);
-        if (profiles > kMaxSide)
-            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles, more than " +
-                                  std::to_string(kMaxSide));
-        if (!ec && profiles > 0 && (long long)bytes < usgs_minimum_file_size(profiles))
-            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles but the file holds only " +
-                                  std::to_string(bytes) + " bytes (at least " +
-                                  std::to_string(kUsgsRecordBHeaderBytes) + " per profile)");
-    }
-    const int cols = GDALGetRasterXSize(ds), rows = GDALGetRasterYSize(ds);
-    if (rows < 2 || cols < 2)
-        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) +
-                              ", a terrain needs at least 2x2 samples");
-    if (rows > kMaxSide || cols > kMaxSide)
-        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", more than " +
-                              std::to_string(kMaxSide) + " samples per side");
-}
-
 // Loading holds the elevations as floats, a float copy for GDAL's no-data
 // filling or warping, and the terrain's 16-bit heights and RGB colors: a
 // cols x rows read is refused before allocating when that exceeds the
@@ -316,20 +274,6 @@ void check_memory(const std::string& path, int cols, int rows) {
         throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", loading it needs about " +
                               fmt(needed / 1073741824.0, 3) + " GiB, more than this machine's " +
                               fmt(memory / 1073741824.0, 3) + " GiB of memory");
-}
-
-// What a user should know about the bands: only band 1 is read as heights.
-void warn_about_bands(GDALDatasetH ds, TerrainInfo& info) {
-    const int bands = GDALGetRasterCount(ds);
-    GDALRasterBandH first = GDALGetRasterBand(ds, 1);
-    const GDALColorInterp ci = GDALGetRasterColorInterpretation(first);
-    if (GDALGetRasterColorTable(first) != nullptr)
-        info.warnings.push_back("band 1 is a palette image: its color indices are taken as heights");
-    else if (bands > 1)
-        info.warnings.push_back(
-            "has " + std::to_string(bands) + " bands; band 1 (" + lower(GDALGetColorInterpretationName(ci)) +
-            ") is taken as heights" +
-            (ci == GCI_RedBand ? " (an RGB image? give heights as TERRAIN and the image as --color)" : ""));
 }
 
 // Band 1's values as metres: its no-data value (and NaN) mark voids, then its
@@ -577,7 +521,7 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     info.source = path;
     info.kind = "gdal";
     info.driver = driver_name;
-    warn_about_bands(src_ds, info);
+    append_band_warnings(src_ds, info.warnings);
     info.source_rows = GDALGetRasterYSize(src_ds);
     info.source_cols = GDALGetRasterXSize(src_ds);
     const MetricGrid metric = metric_grid_of(src_ds, path);
@@ -641,7 +585,7 @@ DataSet load_gdal_raster(const std::string& path, const std::string& color_path,
     gdal::Dataset src = gdal::open_raster(path);
     GDALDriverH driver = GDALGetDatasetDriver(src.get());
     const std::string driver_name = driver ? GDALGetDriverShortName(driver) : "?";
-    check_declared_size(src.get(), path, driver_name);
+    check_declared_size(src.get(), path, kMaxSide);
     try {
         return load_checked(src.get(), path, driver_name, color_path, max_direct_size);
     } catch (const std::bad_alloc&) {
@@ -660,8 +604,8 @@ TerrainDescription survey_gdal_raster(const std::string& path, const std::string
     info.source = path;
     info.kind = "gdal";
     info.driver = driver ? GDALGetDriverShortName(driver) : "?";
-    check_declared_size(src.get(), path, info.driver);
-    warn_about_bands(src.get(), info);
+    check_declared_size(src.get(), path, kMaxSide);
+    append_band_warnings(src.get(), info.warnings);
     info.source_rows = GDALGetRasterYSize(src.get());
     info.source_cols = GDALGetRasterXSize(src.get());
     const MetricGrid m = metric_grid_of(src.get(), path);

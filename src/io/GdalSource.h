@@ -1,8 +1,13 @@
 #pragma once
 // Private to src/io: what a GDAL source raster means to Overflight, shared by
 // the loader (io/GdalRaster.h) and the windowed tiler (io/WindowedTiler.h):
+// the checks made before any sample is read, the warnings about its bands,
 // the metres of its vertical unit and the UTM zone a geographic raster is
 // warped to (DESIGN sec. 4).
+//
+// Based on: Zamri, sec. 3 (USGS DEM ingestion: Record A header, elevation
+// profiles).
+#include <gdal.h>
 #include <ogr_srs_api.h>
 
 #include <memory>
@@ -27,6 +32,21 @@ struct SrsCloser {
     void operator()(OGRSpatialReferenceH s) const { if (s) OSRDestroySpatialReference(s); }
 };
 using Srs = std::unique_ptr<void, SrsCloser>;
+
+// Record A of a USGS DEM: the file's first 1024 bytes (Zamri, sec. 3).
+std::string usgs_record_a_text(const std::string& path);
+
+// The sizes a raster declares, checked before anything is allocated from
+// them, since a few bytes of header can claim billions of samples (a sparse
+// GeoTIFF, a USGS Record A with a false profile count): at least 2x2 samples,
+// at most max_side per side (0: no limit), and a USGS DEM whose Record A
+// declares more profiles than max_side or than the file holds is refused.
+// Throws Error(path, ...).
+void check_declared_size(GDALDatasetH ds, const std::string& path, int max_side);
+
+// Appends to `warnings` what a user should know about the bands: only band 1
+// is read as heights (a palette, or several bands).
+void append_band_warnings(GDALDatasetH ds, std::vector<std::string>& warnings);
 
 // Metres per vertical unit from GDAL's band unit type (free text in
 // practice); `name` receives the unit's name for reports.

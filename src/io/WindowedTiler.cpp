@@ -346,10 +346,12 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
     plan.path = path;
     {
         gdal::Dataset src = gdal::open_raster(path);
-        const int rows = GDALGetRasterYSize(src.get()), cols = GDALGetRasterXSize(src.get());
-        if (rows < 2 || cols < 2)
-            throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) +
-                                  ", a terrain needs at least 2x2 samples");
+        // The loader's checks and warnings; no side limit but the tile grid's (grid_of).
+        check_declared_size(src.get(), path, 0);
+        std::vector<std::string> warnings;
+        append_band_warnings(src.get(), warnings);
+        if (options.warn)
+            for (const std::string& w : warnings) options.warn(w);
         GDALRasterBandH band = GDALGetRasterBand(src.get(), 1);
         int has = 0;
         plan.band.nodata = GDALGetRasterNoDataValue(band, &has);

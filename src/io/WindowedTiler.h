@@ -37,6 +37,7 @@
 #include "io/TileParts.h"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace overflight {
@@ -47,6 +48,9 @@ struct WindowedTileOptions {
     // statistics; not the index of a grid of millions of tiles).
     std::int64_t memory_bytes = std::int64_t(1) << 30;
     TilePart part; // the share of the tile rows to write (io/TileParts.h)
+    // Called, before the source is read, with each warning the loader would
+    // give (TerrainInfo::warnings, e.g. only band 1 of several is read).
+    std::function<void(const std::string& warning)> warn;
 };
 
 // Tiles the raster at `path` into `dir`, part options.part of the run; the
@@ -56,7 +60,9 @@ struct WindowedTileOptions {
 // kMaxTiledSide), Error("--memory-mib", ...) when the bound cannot hold one
 // tile's window, Error(dir, "interrupted") when options.tile.on_tile
 // returned false (it is also called with 0 tiles done while the source is
-// surveyed), and the write errors of write_tile_directory.
+// surveyed), and the write errors of write_tile_directory. The checks made
+// before reading (a USGS DEM's Record A against the file's size, at least
+// 2x2 samples) and the warnings are the loader's (io/GdalSource.h).
 TileWriteReport tile_raster_in_windows(const std::string& path, const std::string& dir,
                                        const WindowedTileOptions& options);
 
