@@ -130,23 +130,55 @@ Grid decimated_grid_of(GDALDatasetH ds, const std::string& path, int factor) {
     return g;
 }
 
-// Fills kNoData samples by inverse-distance interpolation from valid
-// neighbours (GDALFillNodata, the algorithm of gdal_fillnodata), searching as
-// far as needed: voids of any size are filled, never left as spikes.
-void fill_nodata(Grid& g, const std::string& subject) {
-    // Its cost grows with the search distance, so first a short search (enough
-    // for SRTM voids and the wedges a UTM reprojection leaves at the corners of
-    // a 1-degree tile), and a search over the whole grid only if that left any.
-    const int whole = std::max(g.rows, g.cols);
-    for (const int distance : {std::min(256, whole), whole}) {
-        gdal::Dataset ds = grid_dataset(g, subject);
-        GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
-        CPLErrorReset();
-        if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
-            throw Error(subject, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
-        read_band(band, g.cols, g.rows, g.z, subject);
-        if (std::find(g.z.begin(), g.z.end(), kNoData) == g.z.end() || distance == whole) break;
+// One GDALFillNodata pass over `g` searching up to `distance` samples.
+void fill_within(Grid& g, int distance, const std::string& subject) {
+    gdal::Dataset ds = grid_dataset(g, subject);
+    GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+    CPLErrorReset();
+    if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
+        throw Error(subject, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
+    read_band(band, g.cols, g.rows, g.z, subject);
+}
+
+// Sets the kNoData samples 4-connected to the grid's border to `value`;
+// returns whether any kNoData sample is left (a void enclosed by data).
+bool set_border_voids(Grid& g, float value) {
+    std::vector<std::size_t> stack;
+    const auto push = [&](int i, int j) {
+        const std::size_t k = std::size_t(i) * std::size_t(g.cols) + std::size_t(j);
+        if (g.z[k] != kNoData) return;
+        g.z[k] = value;
+        stack.push_back(k);
+    };
+    for (int i = 0; i < g.rows; ++i) push(i, 0), push(i, g.cols - 1);
+    for (int j = 0; j < g.cols; ++j) push(0, j), push(g.rows - 1, j);
+    while (!stack.empty()) {
+        const std::size_t k = stack.back();
+        stack.pop_back();
+        const int i = int(k / std::size_t(g.cols)), j = int(k % std::size_t(g.cols));
+        if (i > 0) push(i - 1, j);
+        if (i + 1 < g.rows) push(i + 1, j);
+        if (j > 0) push(i, j - 1);
+        if (j + 1 < g.cols) push(i, j + 1);
     }
+    return std::find(g.z.begin(), g.z.end(), kNoData) != g.z.end();
+}
+
+// Fills kNoData samples by inverse-distance interpolation from valid
+// neighbours (GDALFillNodata, the algorithm of gdal_fillnodata) within
+// kFillSearchDistance; what that leaves gets `lowest` (never a spike) where
+// it reaches the grid's border: the wedges a reprojection leaves outside the
+// source, whose search over the whole grid took most of a large geographic
+// load, as the windowed tiler's windows do. A void enclosed by data is
+// searched for as far as needed. The cost of a pass grows with its search
+// distance times the samples left to fill.
+void fill_nodata(Grid& g, float lowest, const std::string& subject) {
+    const int whole = std::max(g.rows, g.cols);
+    fill_within(g, std::min(kFillSearchDistance, whole), subject);
+    if (!set_border_voids(g, lowest)) return;
+    fill_within(g, whole, subject);
+    for (float& v : g.z)
+        if (v == kNoData) v = lowest;
 }
 
 struct ColorResult {
@@ -496,10 +528,7 @@ void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long lon
     for (float v : grid.z) missing += v == kNoData;
     if (missing == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
     if (missing > 0) {
-        fill_nodata(grid, path);
-        // Whatever the search could not reach keeps the lowest valid elevation, never a spike.
-        for (float& v : grid.z)
-            if (v == kNoData) v = lowest;
+        fill_nodata(grid, lowest, path);
     }
     // Interpolated voids of an integer DEM are rounded to whole metres, so the
     // DEM keeps its exact 1 m mapping; resampled grids are no longer integral.

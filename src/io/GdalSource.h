@@ -20,6 +20,12 @@ namespace overflight {
 // exactly representable, and distinct from every source's own no-data value.
 inline constexpr float kNoData = -1.0e30f;
 
+// How far GDALFillNodata searches for the valid neighbours of a no-data
+// sample before a void is filled otherwise (io/GdalRaster.h): enough for SRTM
+// voids and for the wedges a UTM reprojection leaves at the corners of a
+// 1-degree tile. The fill of a sample reads only the samples this close.
+inline constexpr int kFillSearchDistance = 256;
+
 // The gdalwarp options, after the target grid's, with which a raster is
 // reprojected onto square metric cells at full resolution: bilinear, Float32
 // with kNoData outside the source, and GDAL's exact transformer (-et 0)

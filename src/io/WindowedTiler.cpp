@@ -34,8 +34,6 @@ namespace overflight {
 
 namespace {
 
-// The loader's first no-data search distance (io/GdalRaster.cpp fill_nodata).
-constexpr int kFillDistance = 256;
 
 std::string number(double v, int digits) {
     char buf[40];
@@ -269,7 +267,7 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int 
     if (std::find(z.begin(), z.end(), kNoData) != z.end()) {
         // The fill of a sample reads only the samples within the search
         // distance, so this wider window fills the core as the whole raster would.
-        const int d = std::min(kFillDistance, std::max(plan.rows, plan.cols));
+        const int d = std::min(kFillSearchDistance, std::max(plan.rows, plan.cols));
         const int br0 = std::max(0, r0 - d), br1 = std::min(plan.rows - 1, r1 + d);
         const int bc0 = std::max(0, c0 - d), bc1 = std::min(plan.cols - 1, c1 + d);
         const int bh = br1 - br0 + 1, bw = bc1 - bc0 + 1;
@@ -285,7 +283,8 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int 
             throw Error(plan.path, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
         for (float& v : z) {
             // Beyond the search distance: the lowest elevation, never a spike
-            // (the loader searches the whole raster there first).
+            // (the loader's too for a void reaching the raster's border; it
+            // searches the whole raster for an enclosed one).
             if (v == kNoData) v = plan.lo;
             if (plan.integral) v = std::round(v);
         }
@@ -301,7 +300,7 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int 
 // Peak bytes of one tile in flight: the widened float window and GDAL's copy
 // of it for the fill, the tile's samples, colors, d2, encoded files.
 std::int64_t bytes_per_tile(const Plan& plan, int tile_size) {
-    const std::int64_t side = std::min<std::int64_t>(tile_size + 2 + 2 * kFillDistance, std::max(plan.rows, plan.cols));
+    const std::int64_t side = std::min<std::int64_t>(tile_size + 2 + 2 * kFillSearchDistance, std::max(plan.rows, plan.cols));
     return 12 * side * side + 48 * std::int64_t(tile_size) * tile_size + (16 << 20);
 }
 

@@ -20,10 +20,11 @@
 //     every tile, apron, d2, overview file byte-identical;
 //   - with no-data within 256 samples of valid data: the same (the fill of a
 //     sample depends only on the samples within its search distance);
-//     voids wider than that, which the loader fills by a second search over
-//     the whole raster, get the lowest elevation of the source here (a
-//     window cannot see the whole raster, and every tile must give a shared
-//     sample the same value);
+//     beyond it, samples get the lowest elevation of the source, as the
+//     loader gives those of voids reaching the raster's border (the wedges
+//     outside a reprojected source); the loader searches the whole raster
+//     for a void enclosed by data wider than that, which a window cannot see
+//     (every tile must give a shared sample the same value);
 //   - a geographic raster, or one with rotated or non-square cells, is read
 //     through a warped VRT (GDALWarp to VRT, the loader's options with the
 //     exact transformer, io/GdalSource.h metric_warp_options), so a sample's
