@@ -54,12 +54,15 @@ void check_imagery_memory(const TerrainArgs& args) {
 
 DataSet reported(DataSet data, const TerrainArgs& args) {
     if (args.warnings_on_stderr)
-        for (const std::string& w : data.info.warnings)
-            std::fprintf(stderr, "overflight: %s: warning: %s\n", data.info.source.c_str(), w.c_str());
+        for (const std::string& w : data.info.warnings) print_warning(data.info.source, w);
     return data;
 }
 
 } // namespace
+
+void print_warning(const std::string& source, const std::string& warning) {
+    std::fprintf(stderr, "overflight: %s: warning: %s\n", source.c_str(), warning.c_str());
+}
 
 DataSet load_terrain(const TerrainArgs& args) {
     check_max_direct_size(args);

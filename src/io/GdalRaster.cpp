@@ -35,20 +35,12 @@ namespace overflight {
 
 namespace {
 
-// Marks no-data inside our float buffers: far below any elevation on Earth,
-// exactly representable, and distinct from every source's own no-data value.
-constexpr float kNoData = -1.0e30f;
 
 std::string fmt(double v, int precision = 6) {
     std::ostringstream o;
     o.precision(precision);
     o << v;
     return o.str();
-}
-
-std::string lower(std::string s) {
-    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
 }
 
 std::string srs_name(OGRSpatialReferenceH srs) {
@@ -82,16 +74,6 @@ constexpr double kLoadBytesPerSample = 16;
 // Samples a survey reads for the elevation range and no-data share: 64 blocks
 // of a tiled GeoTIFF, a few hundred rows of a striped one.
 constexpr long long kSurveySamples = 1LL << 22;
-
-// Record A of a USGS DEM is its first 1024-byte record (Zamri, sec. 3).
-std::string usgs_record_a_text(const std::string& path) {
-    std::string head(1024, ' ');
-    if (FILE* f = std::fopen(path.c_str(), "rb")) {
-        head.resize(std::fread(head.data(), 1, head.size(), f));
-        std::fclose(f);
-    }
-    return head;
-}
 
 struct Grid {
     int rows = 0, cols = 0;
@@ -150,23 +132,55 @@ Grid decimated_grid_of(GDALDatasetH ds, const std::string& path, int factor) {
     return g;
 }
 
-// Fills kNoData samples by inverse-distance interpolation from valid
-// neighbours (GDALFillNodata, the algorithm of gdal_fillnodata), searching as
-// far as needed: voids of any size are filled, never left as spikes.
-void fill_nodata(Grid& g, const std::string& subject) {
-    // Its cost grows with the search distance, so first a short search (enough
-    // for SRTM voids and the wedges a UTM reprojection leaves at the corners of
-    // a 1-degree tile), and a search over the whole grid only if that left any.
-    const int whole = std::max(g.rows, g.cols);
-    for (const int distance : {std::min(256, whole), whole}) {
-        gdal::Dataset ds = grid_dataset(g, subject);
-        GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
-        CPLErrorReset();
-        if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
-            throw Error(subject, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
-        read_band(band, g.cols, g.rows, g.z, subject);
-        if (std::find(g.z.begin(), g.z.end(), kNoData) == g.z.end() || distance == whole) break;
+// One GDALFillNodata pass over `g` searching up to `distance` samples.
+void fill_within(Grid& g, int distance, const std::string& subject) {
+    gdal::Dataset ds = grid_dataset(g, subject);
+    GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+    CPLErrorReset();
+    if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
+        throw Error(subject, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
+    read_band(band, g.cols, g.rows, g.z, subject);
+}
+
+// Sets the kNoData samples 4-connected to the grid's border to `value`;
+// returns whether any kNoData sample is left (a void enclosed by data).
+bool set_border_voids(Grid& g, float value) {
+    std::vector<std::size_t> stack;
+    const auto push = [&](int i, int j) {
+        const std::size_t k = std::size_t(i) * std::size_t(g.cols) + std::size_t(j);
+        if (g.z[k] != kNoData) return;
+        g.z[k] = value;
+        stack.push_back(k);
+    };
+    for (int i = 0; i < g.rows; ++i) push(i, 0), push(i, g.cols - 1);
+    for (int j = 0; j < g.cols; ++j) push(0, j), push(g.rows - 1, j);
+    while (!stack.empty()) {
+        const std::size_t k = stack.back();
+        stack.pop_back();
+        const int i = int(k / std::size_t(g.cols)), j = int(k % std::size_t(g.cols));
+        if (i > 0) push(i - 1, j);
+        if (i + 1 < g.rows) push(i + 1, j);
+        if (j > 0) push(i, j - 1);
+        if (j + 1 < g.cols) push(i, j + 1);
     }
+    return std::find(g.z.begin(), g.z.end(), kNoData) != g.z.end();
+}
+
+// Fills kNoData samples by inverse-distance interpolation from valid
+// neighbours (GDALFillNodata, the algorithm of gdal_fillnodata) within
+// kFillSearchDistance; what that leaves gets `lowest` (never a spike) where
+// it reaches the grid's border: the wedges a reprojection leaves outside the
+// source, whose search over the whole grid took most of a large geographic
+// load, as the windowed tiler's windows do. A void enclosed by data is
+// searched for as far as needed. The cost of a pass grows with its search
+// distance times the samples left to fill.
+void fill_nodata(Grid& g, float lowest, const std::string& subject) {
+    const int whole = std::max(g.rows, g.cols);
+    fill_within(g, std::min(kFillSearchDistance, whole), subject);
+    if (!set_border_voids(g, lowest)) return;
+    fill_within(g, whole, subject);
+    for (float& v : g.z)
+        if (v == kNoData) v = lowest;
 }
 
 struct ColorResult {
@@ -260,33 +274,6 @@ std::vector<std::pair<std::string, std::string>> metadata_of(GDALDatasetH ds, co
     return out;
 }
 
-// The sizes a raster declares, checked before anything is allocated from them:
-// a few bytes of header can claim billions of samples (a sparse GeoTIFF, a
-// USGS Record A with a false profile count).
-void check_declared_size(GDALDatasetH ds, const std::string& path, const std::string& driver) {
-    if (driver == "USGSDEM") {
-        // GDAL sizes the grid by Record A's profile count; each profile needs a
-        // Record B in the file (USGS DEM Standards Part 2).
-        const long profiles = usgs_profile_count(usgs_record_a_text(path));
-        std::error_code ec;
-        const auto bytes = std::filesystem::file_size(path, ec);
-        if (profiles > kMaxSide)
-            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles, more than " +
-                                  std::to_string(kMaxSide));
-        if (!ec && profiles > 0 && (long long)bytes < usgs_minimum_file_size(profiles))
-            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles but the file holds only " +
-                                  std::to_string(bytes) + " bytes (at least " +
-                                  std::to_string(kUsgsRecordBHeaderBytes) + " per profile)");
-    }
-    const int cols = GDALGetRasterXSize(ds), rows = GDALGetRasterYSize(ds);
-    if (rows < 2 || cols < 2)
-        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) +
-                              ", a terrain needs at least 2x2 samples");
-    if (rows > kMaxSide || cols > kMaxSide)
-        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", more than " +
-                              std::to_string(kMaxSide) + " samples per side");
-}
-
 // Loading holds the elevations as floats, a float copy for GDAL's no-data
 // filling or warping, and the terrain's 16-bit heights and RGB colors: a
 // cols x rows read is refused before allocating when that exceeds the
@@ -298,20 +285,6 @@ void check_memory(const std::string& path, int cols, int rows) {
         throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", loading it needs about " +
                               fmt(needed / 1073741824.0, 3) + " GiB, more than this machine's " +
                               fmt(memory / 1073741824.0, 3) + " GiB of memory");
-}
-
-// What a user should know about the bands: only band 1 is read as heights.
-void warn_about_bands(GDALDatasetH ds, TerrainInfo& info) {
-    const int bands = GDALGetRasterCount(ds);
-    GDALRasterBandH first = GDALGetRasterBand(ds, 1);
-    const GDALColorInterp ci = GDALGetRasterColorInterpretation(first);
-    if (GDALGetRasterColorTable(first) != nullptr)
-        info.warnings.push_back("band 1 is a palette image: its color indices are taken as heights");
-    else if (bands > 1)
-        info.warnings.push_back(
-            "has " + std::to_string(bands) + " bands; band 1 (" + lower(GDALGetColorInterpretationName(ci)) +
-            ") is taken as heights" +
-            (ci == GCI_RedBand ? " (an RGB image? give heights as TERRAIN and the image as --color)" : ""));
 }
 
 // Band 1's values as metres: its no-data value (and NaN) mark voids, then its
@@ -502,8 +475,12 @@ double to_square_metric_cells(Grid& grid, const MetricGrid& m, int factor, const
         } else if (m.finer_cells) {
             warp_opts.insert(warp_opts.end(), {"-tr", fmt(m.res, 17), fmt(m.res, 17)});
         }
-        warp_opts.insert(warp_opts.end(), {"-r", "bilinear", "-srcnodata", fmt(kNoData, 9), "-dstnodata",
-                                           fmt(kNoData, 9), "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA"});
+        const std::vector<std::string> common = metric_warp_options();
+        warp_opts.insert(warp_opts.end(), common.begin(), common.end());
+        warp_opts.insert(warp_opts.end(), {"-srcnodata", fmt(kNoData, 9)});
+        // A decimated read is rendered, never tiled: GDAL's approximate
+        // transformer saves it a projection per sample.
+        if (factor > 1) warp_opts.insert(warp_opts.end(), {"-et", "0.125"});
         gdal::Dataset source = grid_dataset(grid, path);
         gdal::Dataset warped = gdal::warp(source.get(), warp_opts, path);
         grid = grid_of(warped.get(), path);
@@ -521,21 +498,16 @@ double to_square_metric_cells(Grid& grid, const MetricGrid& m, int factor, const
     return hs * m.metres_per_unit;
 }
 
-// Fills the no-data samples from their valid neighbours (the rest: the lowest
-// valid elevation, never a spike), recording what was done in `info`.
-void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long long source_voids,
-                     bool& integral) {
+// Fills the no-data samples from their valid neighbours (the rest: `lowest`,
+// the lowest valid elevation of the source, never a spike), recording what
+// was done in `info`.
+void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long long source_voids, float lowest,
+                bool& integral) {
     long long missing = 0;
     for (float v : grid.z) missing += v == kNoData;
     if (missing == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
     if (missing > 0) {
-        fill_nodata(grid, path);
-        // Whatever the search could not reach keeps the lowest valid elevation, never a spike.
-        float lowest = std::numeric_limits<float>::max();
-        for (float v : grid.z)
-            if (v != kNoData) lowest = std::min(lowest, v);
-        for (float& v : grid.z)
-            if (v == kNoData) v = lowest;
+        fill_nodata(grid, lowest, path);
     }
     // Interpolated voids of an integer DEM are rounded to whole metres, so the
     // DEM keeps its exact 1 m mapping; resampled grids are no longer integral.
@@ -557,7 +529,7 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     info.source = path;
     info.kind = "gdal";
     info.driver = driver_name;
-    warn_about_bands(src_ds, info);
+    append_band_warnings(src_ds, info.warnings);
     info.source_rows = GDALGetRasterYSize(src_ds);
     info.source_cols = GDALGetRasterXSize(src_ds);
     const MetricGrid metric = metric_grid_of(src_ds, path);
@@ -569,6 +541,16 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     const long long voids = heights_to_metres(grid, src_ds, path, info, integral);
     if (voids == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
     info.metadata = metadata_of(src_ds, path, info.driver);
+    // The height mapping and the colour ramp span the source's elevations:
+    // reprojected and filled values are weighted means of them, so they lie
+    // within, and the windowed tiler (io/WindowedTiler.h), which cannot see
+    // the whole reprojected grid, knows the same range from its first pass.
+    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+    for (float v : grid.z)
+        if (v != kNoData) {
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
 
     const double hs = to_square_metric_cells(grid, metric, factor, path, info);
     if (const std::string problem = horizontal_scale_problem(grid.rows, grid.cols, hs); !problem.empty())
@@ -582,13 +564,8 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
                                 " (overflight tile keeps the full resolution)");
     }
 
-    fill_voids(grid, path, info, voids, integral);
+    fill_voids(grid, path, info, voids, lo, integral);
 
-    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
-    for (float v : grid.z) {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-    }
     const HeightMapping mapping = choose_height_mapping(lo, hi, integral);
     data.terrain = Terrain(grid.rows, grid.cols, float(hs), mapping.v_scale, mapping.y_offset);
     info.georeferenced = grid.georeferenced;
@@ -616,7 +593,8 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
             info.color_source = color.description;
         }
     } else {
-        shade_by_elevation(data.terrain, 0.0f);
+        const auto [world_lo, world_hi] = mapped_range(mapping, lo, hi);
+        shade_by_elevation(data.terrain, 0.0f, world_lo, world_hi);
         info.color_source = "elevation ramp + hillshade";
     }
     return data;
@@ -629,7 +607,7 @@ DataSet load_gdal_raster(const std::string& path, const std::string& color_path,
     gdal::Dataset src = gdal::open_raster(path);
     GDALDriverH driver = GDALGetDatasetDriver(src.get());
     const std::string driver_name = driver ? GDALGetDriverShortName(driver) : "?";
-    check_declared_size(src.get(), path, driver_name);
+    check_declared_size(src.get(), path, kMaxSide);
     try {
         return load_checked(src.get(), path, driver_name, color_path, max_direct_size, imagery_bytes);
     } catch (const std::bad_alloc&) {
@@ -648,8 +626,8 @@ TerrainDescription survey_gdal_raster(const std::string& path, const std::string
     info.source = path;
     info.kind = "gdal";
     info.driver = driver ? GDALGetDriverShortName(driver) : "?";
-    check_declared_size(src.get(), path, info.driver);
-    warn_about_bands(src.get(), info);
+    check_declared_size(src.get(), path, kMaxSide);
+    append_band_warnings(src.get(), info.warnings);
     info.source_rows = GDALGetRasterYSize(src.get());
     info.source_cols = GDALGetRasterXSize(src.get());
     const MetricGrid m = metric_grid_of(src.get(), path);

@@ -18,10 +18,13 @@ namespace overflight {
 //  - a geographic CRS (degrees) is warped to the UTM zone of the raster's centre
 //    (same datum), bilinear, with square cells at GDAL's suggested native
 //    resolution; a projected raster with non-square or rotated cells is warped
-//    within its CRS to square cells of its finer pixel size;
+//    within its CRS to square cells of its finer pixel size (with GDAL's
+//    exact transformer at full resolution: io/GdalSource.h);
 //  - no-data samples (the band's no-data value, NaN, and cells outside the source
 //    after reprojection) are filled from valid neighbours by GDALFillNodata;
-//  - elevations map to 16 bits by choose_height_mapping (HeightMapping.h);
+//  - elevations map to 16 bits by choose_height_mapping (HeightMapping.h) over
+//    the range of the source's valid elevations, which the reprojected and
+//    filled ones lie within; the elevation ramp spans the same range;
 //  - hs is the pixel size in metres; a raster without a geotransform has hs = 1;
 //  - with `color_path` non-empty, that raster is resampled onto the DEM grid
 //    (warped by georeferencing when both have one, else stretched to the grid):
