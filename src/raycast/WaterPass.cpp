@@ -25,7 +25,12 @@ glm::dvec3 unproject(const glm::dmat4& inverse_vp, double nx, double ny, double 
     return glm::dvec3(p) / p.w;
 }
 
+// All levels, up to the 1x1 block of the whole terrain.
+constexpr int kPyramidLevels = 31;
+
 } // namespace
+
+WaterPass::WaterPass(const Terrain& terrain) : terrain_(terrain), pyramid_(terrain, kPyramidLevels) {}
 
 long long WaterPass::apply(const Camera& camera, const Environment& env, SurfaceModel surface, ColorImage& color,
                            DepthImage& depth) const {
@@ -33,6 +38,7 @@ long long WaterPass::apply(const Camera& camera, const Environment& env, Surface
     const Terrain& t = terrain_;
     RayMarcher marcher(t, env);
     marcher.set_colors(colors_);
+    if (skipping_) marcher.set_pyramid(&pyramid_);
     const RayMarcher::Frame frame = marcher.frame(camera);
     const double level = env.water_level;
     const double top = double(t.max_height());
