@@ -14,15 +14,23 @@ namespace overflight {
 
 namespace {
 
-// Where the loop x, x + step, ... is linear: its values are exactly x + i c
-// for i = 0..n. With u the unit in the last place of x's binade [2^e, 2^(e+1))
-// and step < x, every x' = x + i c (a multiple of u) rounds x' + step to
-// x' + c, c = step rounded to a multiple of u, while x' + c stays in the
-// binade; except when step lies half-way between two multiples of u, where
-// the rounding to even depends on x' (n = 0 then: the caller steps singly).
+// Where the loop x, x + step, ... is linear: from a value x in the binade
+// [2^e, top = 2^(e+1)), with u its unit in the last place and step < x,
+// every x' = x + i c (a multiple of u) rounds x' + step to x' + c, c = step
+// rounded to a multiple of u, as long as x' + c < top; except when step lies
+// half-way between two multiples of u, where the rounding to even depends on
+// x' (no run then: the caller steps singly).
 struct LinearRun {
-    double c = 0.0;
-    long long n = 0;
+    bool ok = false;
+    double c = 0.0, top = 0.0;
+    // The largest n with x + n c < top (c > 0): the run's last value.
+    long long length(double x) const {
+        const double room = (top - x) / c;
+        long long n = room >= 9e15 ? (long long)9e15 : (long long)room;
+        while (n > 0 && !(x + double(n) * c < top)) --n;
+        while (x + double(n + 1) * c < top) ++n;
+        return n;
+    }
 };
 
 LinearRun linear_run(double x, double step) {
@@ -32,12 +40,7 @@ LinearRun linear_run(double x, double step) {
     // The first rounded sum less x is c (exact: x <= x + step < 2 x), unless it left the binade.
     const double c = (x + step) - x;
     if (!(x + c < top) || std::abs(step - c) * 2.0 == u) return {};
-    if (c == 0.0) return {0.0, LLONG_MAX}; // x + step rounds back to x, for ever
-    const double room = (top - x) / c;
-    long long n = room >= 9e15 ? (long long)9e15 : (long long)room;
-    while (n > 0 && !(x + double(n) * c < top)) --n;
-    while (x + double(n + 1) * c < top) ++n;
-    return {c, n};
+    return {true, c, top};
 }
 
 // Below this many steps the loop itself is cheaper than a linear run.
@@ -47,48 +50,58 @@ constexpr long long kShortLoop = 8;
 
 double accumulate(double x, double step, long long k) {
     if (!std::isfinite(x)) return x; // an axis the segment never crosses
-    for (; k > 0 && k <= kShortLoop; --k) x += step;
-    while (k > 0) {
+    while (k > kShortLoop) {
         const LinearRun run = linear_run(x, step);
-        if (run.n > 0) {
-            const long long m = std::min(run.n, k);
-            x += double(m) * run.c;
-            k -= m;
-        } else {
+        if (!run.ok) {
+            x += step;
+            --k;
+            continue;
+        }
+        if (run.c == 0.0) return x; // x + step rounds back to x, for ever
+        // k c is exact when x + k c < top (a multiple of u below 2^(e+1)).
+        if (x + double(k) * run.c < run.top) return x + double(k) * run.c;
+        const long long n = run.length(x);
+        x += double(n) * run.c;
+        k -= n;
+        if (n == 0) {
             x += step;
             --k;
         }
     }
+    for (; k > 0; --k) x += step;
     return x;
 }
 
-long long count_below(double x, double step, double v, bool inclusive, long long limit) {
+Passed count_below(double x, double step, double v, bool inclusive, long long limit) {
     auto below = [&](double y) { return inclusive ? y <= v : y < v; };
     long long i = 0; // x is the loop's value i; values 0..i-1 are below
-    if (limit <= kShortLoop) {
-        for (; i < limit && below(x); ++i) x += step;
-        return i;
-    }
-    while (i < limit) {
-        if (!below(x)) return i;
+    while (limit - i > kShortLoop) {
+        if (!below(x)) return {i, x};
         const LinearRun run = linear_run(x, step);
-        const long long m = std::min(run.n, limit - 1 - i);
-        if (m <= 0) {
+        if (!run.ok) {
             x += step;
             ++i;
             continue;
         }
-        if (run.c == 0.0) return limit;
+        if (run.c == 0.0) return {limit, x};
+        long long m = limit - 1 - i; // values x + j c, j = 1..m, are the loop's
+        if (!(x + double(m) * run.c < run.top)) m = run.length(x);
+        if (m == 0) {
+            x += step;
+            ++i;
+            continue;
+        }
         // The first j in 1..m with x + j c not below, from the estimate (v - x) / c.
         const double guess = (v - x) / run.c;
         long long j = guess >= double(m) ? m : std::max(1LL, (long long)guess);
         while (j > 1 && !below(x + double(j - 1) * run.c)) --j;
         while (j <= m && below(x + double(j) * run.c)) ++j;
-        if (j <= m) return i + j;
+        if (j <= m) return {i + j, x + double(j) * run.c};
         x += double(m) * run.c;
         i += m;
     }
-    return limit;
+    for (; i < limit && below(x); ++i) x += step;
+    return {i, x};
 }
 
 CellTraversal::CellTraversal(const glm::dvec3& a, const glm::dvec3& d, double hs, int cols, int rows, double t0) {
@@ -116,16 +129,16 @@ double CellTraversal::leave_block(int x0, int x1, int z0, int z1) {
     const long long mx = sx > 0 ? x1 - ix : ix - x0 + 1, mz = sz > 0 ? z1 - iz : iz - z0 + 1;
     const double exit_x = accumulate(next_x, step_x, mx - 1), exit_z = accumulate(next_z, step_z, mz - 1);
     if (exit_x <= exit_z) {
-        const long long n = count_below(next_z, step_z, exit_x, false, mz - 1); // z boundaries before
-        iz += sz * int(n);
-        next_z = accumulate(next_z, step_z, n);
+        const Passed z = count_below(next_z, step_z, exit_x, false, mz - 1); // z boundaries before
+        iz += sz * int(z.count);
+        next_z = z.next;
         ix += sx * int(mx);
         next_x = exit_x + step_x;
         return exit_x;
     }
-    const long long n = count_below(next_x, step_x, exit_z, true, mx - 1); // x boundaries before (ties: x first)
-    ix += sx * int(n);
-    next_x = accumulate(next_x, step_x, n);
+    const Passed x = count_below(next_x, step_x, exit_z, true, mx - 1); // x boundaries before (ties: x first)
+    ix += sx * int(x.count);
+    next_x = x.next;
     iz += sz * int(mz);
     next_z = exit_z + step_z;
     return exit_z;

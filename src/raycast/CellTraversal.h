@@ -20,8 +20,13 @@ namespace overflight {
 double accumulate(double x, double step, long long k);
 
 // How many of the loop's values x, x + step, (x + step) + step, ... (step > 0)
-// among the first `limit` are below v (< v, or <= v when `inclusive`).
-long long count_below(double x, double step, double v, bool inclusive, long long limit);
+// among the first `limit` are below v (< v, or <= v when `inclusive`), and
+// the loop's value after as many steps (accumulate(x, step, count)).
+struct Passed {
+    long long count = 0;
+    double next = 0.0;
+};
+Passed count_below(double x, double step, double v, bool inclusive, long long limit);
 
 struct CellTraversal {
     int ix = 0, iz = 0;               // the current cell

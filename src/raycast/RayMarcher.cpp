@@ -58,7 +58,8 @@ RayMarcher::Hit RayMarcher::intersect_blocks(const glm::dvec3& a, const glm::dve
     for (;;) {
         if (skip) {
             const double ya = a.y + s * d.y;
-            level = std::min(level + 1, pyramid_->levels());
+            // The coarsest block below the segment, from the last one's level.
+            while (level < pyramid_->levels() && ya > block_height(level + 1, cells.iz, cells.ix)) ++level;
             while (level > 0 && !(ya > block_height(level, cells.iz, cells.ix))) --level;
             if (level > 0) {
                 const int x0 = cells.ix >> level << level, z0 = cells.iz >> level << level;

@@ -49,23 +49,25 @@ TEST(CellTraversal, AccumulateIsTheLoopsRoundedSums) {
 }
 
 TEST(CellTraversal, CountBelowCountsTheLoopsValues) {
-    EXPECT_EQ(count_below(0.0, 0.1, 0.3, false, 100), 3);        // 0, 0.1, 0.2; 0.30000000000000004 is not
-    EXPECT_EQ(count_below(0.0, 0.25, 0.5, false, 100), 2);       // 0, 0.25
-    EXPECT_EQ(count_below(0.0, 0.25, 0.5, true, 100), 3);        // and 0.5
-    EXPECT_EQ(count_below(0.0, 0.25, 0.5, true, 2), 2);          // at most the limit
+    EXPECT_EQ(count_below(0.0, 0.1, 0.3, false, 100).count, 3);        // 0, 0.1, 0.2; 0.30000000000000004 is not
+    EXPECT_EQ(count_below(0.0, 0.25, 0.5, false, 100).count, 2);       // 0, 0.25
+    EXPECT_EQ(count_below(0.0, 0.25, 0.5, true, 100).count, 3);        // and 0.5
+    EXPECT_EQ(count_below(0.0, 0.25, 0.5, true, 2).count, 2);          // at most the limit
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> start(0.0, 1.0), step(1e-5, 0.05), span(0.0, 1.5);
     for (int n = 0; n < 2000; ++n) {
         const double x = start(rng), s = step(rng), v = x + span(rng);
         const long long limit = std::uniform_int_distribution<long long>(0, 2000)(rng);
-        for (bool inclusive : {false, true})
-            ASSERT_EQ(count_below(x, s, v, inclusive, limit), loop_count(x, s, v, inclusive, limit))
-                << x << " " << s << " " << v << " " << limit;
+        for (bool inclusive : {false, true}) {
+            const Passed p = count_below(x, s, v, inclusive, limit);
+            ASSERT_EQ(p.count, loop_count(x, s, v, inclusive, limit)) << x << " " << s << " " << v << " " << limit;
+            ASSERT_TRUE(same_bits(p.next, loop_sum(x, s, p.count)));
+        }
     }
     // On a value of the loop itself: strict and inclusive differ by one.
     const double v = loop_sum(0.3, 0.001, 500);
-    EXPECT_EQ(count_below(0.3, 0.001, v, false, 1000), 500);
-    EXPECT_EQ(count_below(0.3, 0.001, v, true, 1000), 501);
+    EXPECT_EQ(count_below(0.3, 0.001, v, false, 1000).count, 500);
+    EXPECT_EQ(count_below(0.3, 0.001, v, true, 1000).count, 501);
 }
 
 namespace {
