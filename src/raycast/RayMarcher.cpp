@@ -63,8 +63,12 @@ RayMarcher::Hit RayMarcher::intersect_blocks(const glm::dvec3& a, const glm::dve
             while (level > 0 && !(ya > block_height(level, cells.iz, cells.ix))) --level;
             if (level > 0) {
                 const int x0 = cells.ix >> level << level, z0 = cells.iz >> level << level;
-                const double e = cells.leave_block(x0, std::min(x0 + (1 << level), t.cols()), z0,
-                                                   std::min(z0 + (1 << level), t.rows()));
+                const int x1 = std::min(x0 + (1 << level), t.cols()), z1 = std::min(z0 + (1 << level), t.rows());
+                // Both sides the segment can leave through are the grid's
+                // edges (always so for the whole grid's block: the segment
+                // above every sample): it leaves the grid, or ends, unhit.
+                if ((cells.sx > 0 ? x1 == t.cols() : x0 == 0) && (cells.sz > 0 ? z1 == t.rows() : z0 == 0)) return {};
+                const double e = cells.leave_block(x0, x1, z0, z1);
                 if (e >= t1) return {};
                 s = e;
                 if (cells.ix < 0 || cells.iz < 0 || cells.ix >= t.cols() || cells.iz >= t.rows()) return {};
