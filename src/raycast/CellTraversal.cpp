@@ -127,21 +127,34 @@ double CellTraversal::leave_block(int x0, int x1, int z0, int z1) {
     // segment leaves through x at the mx-th x boundary unless the mz-th z
     // boundary comes strictly earlier.
     const long long mx = sx > 0 ? x1 - ix : ix - x0 + 1, mz = sz > 0 ? z1 - iz : iz - z0 + 1;
-    const double exit_x = accumulate(next_x, step_x, mx - 1), exit_z = accumulate(next_z, step_z, mz - 1);
-    if (exit_x <= exit_z) {
-        const Passed z = count_below(next_z, step_z, exit_x, false, mz - 1); // z boundaries before
+    auto through_x = [&](double exit_x, const Passed& z) {
         iz += sz * int(z.count);
         next_z = z.next;
         ix += sx * int(mx);
         next_x = exit_x + step_x;
         return exit_x;
+    };
+    auto through_z = [&](double exit_z, const Passed& x) {
+        ix += sx * int(x.count);
+        next_x = x.next;
+        iz += sz * int(mz);
+        next_z = exit_z + step_z;
+        return exit_z;
+    };
+    // The side the unrounded sums reach first, checked by counting the other
+    // axis's boundaries before its exit (fewer than all: that side it is).
+    if (next_x + double(mx - 1) * step_x <= next_z + double(mz - 1) * step_z) {
+        const double exit_x = accumulate(next_x, step_x, mx - 1);
+        const Passed z = count_below(next_z, step_z, exit_x, false, mz);
+        if (z.count < mz) return through_x(exit_x, z);
+        const double exit_z = accumulate(next_z, step_z, mz - 1);
+        return through_z(exit_z, count_below(next_x, step_x, exit_z, true, mx - 1));
     }
-    const Passed x = count_below(next_x, step_x, exit_z, true, mx - 1); // x boundaries before (ties: x first)
-    ix += sx * int(x.count);
-    next_x = x.next;
-    iz += sz * int(mz);
-    next_z = exit_z + step_z;
-    return exit_z;
+    const double exit_z = accumulate(next_z, step_z, mz - 1);
+    const Passed x = count_below(next_x, step_x, exit_z, true, mx);
+    if (x.count < mx) return through_z(exit_z, x);
+    const double exit_x = accumulate(next_x, step_x, mx - 1);
+    return through_x(exit_x, count_below(next_z, step_z, exit_x, false, mz - 1));
 }
 
 } // namespace overflight
