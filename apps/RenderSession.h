@@ -72,6 +72,11 @@ public:
     // back when `want_depth`. The view's images live until the next call.
     void render(const MethodEntry& row, TerrainMethod& method, const Camera& camera, bool want_depth,
                 RenderedView& view);
+    // Makes the GL renderer's context (if one was created) current on the
+    // calling thread, as the session's destruction needs when another thread rendered last.
+    void make_gl_current() {
+        if (gl_) gl_->make_current();
+    }
 
 private:
     const DataSet& data_;

@@ -14,7 +14,12 @@ void add_terrain_options(CLI::App& cmd, TerrainArgs& args) {
                    "demo | hovercraft data set directory (map, hf.pgm, color.ppm) | tile directory | any raster GDAL reads")
         ->required();
     cmd.add_option("--color", args.load.color_path,
-                   "color raster for a GDAL DEM (orthophoto, Landsat bands 3,2,1, ...), resampled onto the DEM grid");
+                   "color raster for a GDAL DEM (orthophoto, Landsat bands 3,2,1, ...): kept at its own resolution "
+                   "when finer than the DEM, else resampled onto the DEM grid");
+    cmd.add_option("--imagery-memory-mib", args.load.imagery_memory_mib,
+                   "imagery finer than the DEM (with its mip levels) beyond this many MiB is read decimated (1..1048576)")
+        ->transform(decimal<int>())
+        ->capture_default_str();
     cmd.add_option("--demo-size", args.load.demo_size, "samples per side of the demo island (2^n+1, 33..16385)")
         ->transform(decimal<int>())
         ->capture_default_str();
@@ -42,17 +47,26 @@ void check_max_direct_size(const TerrainArgs& args) {
         throw Error("--max-direct-size", std::to_string(n) + " is not a side in 2..65537 samples");
 }
 
+void check_imagery_memory(const TerrainArgs& args) {
+    const int mib = args.load.imagery_memory_mib;
+    if (mib < 1 || mib > 1048576) throw Error("--imagery-memory-mib", std::to_string(mib) + " is not in 1..1048576");
+}
+
 DataSet reported(DataSet data, const TerrainArgs& args) {
     if (args.warnings_on_stderr)
-        for (const std::string& w : data.info.warnings)
-            std::fprintf(stderr, "overflight: %s: warning: %s\n", data.info.source.c_str(), w.c_str());
+        for (const std::string& w : data.info.warnings) print_warning(data.info.source, w);
     return data;
 }
 
 } // namespace
 
+void print_warning(const std::string& source, const std::string& warning) {
+    std::fprintf(stderr, "overflight: %s: warning: %s\n", source.c_str(), warning.c_str());
+}
+
 DataSet load_terrain(const TerrainArgs& args) {
     check_max_direct_size(args);
+    check_imagery_memory(args);
     const LoadingScope loading(args.terrain);
     return reported(overflight::load_terrain(args.terrain, args.load), args);
 }
@@ -66,6 +80,7 @@ DataSet load_terrain_lazily(const TerrainArgs& args) {
 
 TerrainDescription describe_terrain_lazily(const TerrainArgs& args) {
     if (is_tile_directory(args.terrain)) return describe(load_terrain_lazily(args));
+    check_imagery_memory(args);
     const LoadingScope loading(args.terrain);
     return overflight::describe_terrain(args.terrain, args.load, kInfoExactSamples);
 }

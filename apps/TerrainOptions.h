@@ -33,6 +33,9 @@ inline constexpr int kDefaultMaxDirectSize = 8193;
 // more samples per side is read decimated (load_gdal_raster).
 void add_max_direct_size_option(CLI::App& cmd, TerrainArgs& args);
 
+// Prints "overflight: SOURCE: warning: WARNING" on stderr.
+void print_warning(const std::string& source, const std::string& warning);
+
 // load_terrain(args.terrain, args.load), its warnings printed on stderr;
 // throws overflight::Error.
 DataSet load_terrain(const TerrainArgs& args);

@@ -1,6 +1,6 @@
 // `overflight fly TERRAIN [--scene FILE] [--method M] [--record path.csv]
 //                  [--frames N --press KEY:FROM-TO ... --screenshot FILE]
-//                  [--replay path.csv [--frames N] --out DIR [--video out.mp4]]`
+//                  [--replay path.csv [--frames N] --out DIR [--video out.mp4] [--save-cameras]]`
 // (DESIGN sec. 6). Interactive: a resizable window flying the
 // hovercraft (gl/FlightWindow). With --frames: an unattended run of N frames
 // with scripted keys (FROM-TO in frames). With --replay: the recorded cameras
@@ -14,6 +14,7 @@
 // Prints one CSV line per method used:
 //   method,frames,fps,triangles_per_frame,object_triangles_per_frame,ms_per_step
 // the last column as "step:ms;step:ms;..." (mean over the timed frames).
+#include "CameraOptions.h"
 #include "Commands.h"
 #include "LookOptions.h"
 #include "OptionValues.h"
@@ -22,12 +23,14 @@
 #include "core/Error.h"
 #include "core/SunLight.h"
 #include "gl/FlightWindow.h"
+#include "io/CameraFile.h"
 #include "io/Files.h"
 #include "io/FlightRecordFile.h"
 #include "io/ImageWriters.h"
 #include "io/SceneFile.h"
 #include "io/Subprocess.h"
 #include "io/TileDirectory.h"
+#include "sim/FlightSession.h"
 #include "sim/KeyScript.h"
 
 #include <algorithm>
@@ -51,6 +54,7 @@ struct FlyOptions {
     std::vector<std::string> presses;
     double fov = 60;
     bool no_hud = false, hidden = false;
+    bool save_cameras = false; // --replay: a camera file beside each frame
 };
 
 void parse_size(const std::string& s, int& w, int& h) {
@@ -128,6 +132,20 @@ void run_replay(const FlyOptions& o, const DataSet& data, const MethodContext& m
                 const std::string path = (fs::path(o.out) / frame_name(index)).string();
                 write_png(path, image);
                 written.push_back(path);
+                if (o.save_cameras) {
+                    // The frame's camera as a camera file (render --camera
+                    // draws the same view, without the hovercraft).
+                    const FlightFrame& f = record.frames[std::size_t(index)];
+                    Camera cam = flight_camera(data.terrain, o.fov);
+                    cam.width = w;
+                    cam.height = h;
+                    cam.eye = f.eye;
+                    cam.heading = f.heading;
+                    cam.pitch = f.pitch;
+                    const std::string json = fs::path(path).replace_extension(".json").string();
+                    write_camera_file(json, cam, camera_map_of(cam, data));
+                    written.push_back(json);
+                }
                 rendered.frames.push_back(record.frames[std::size_t(index)]);
                 ++index;
             });
@@ -184,18 +202,21 @@ void run_fly(const FlyOptions& o) {
     wo.visible = !o.hidden;
     const std::filesystem::path shot_base = o.screenshot.empty() ? std::filesystem::path("overflight.png")
                                                                  : std::filesystem::path(o.screenshot);
-    const gl::ScreenshotSink save = [&](const ColorImage& image, int index) {
+    const gl::ScreenshotSink save = [&](const ColorImage& image, const Camera& camera, int index) {
         if (index < 0) {
             if (!o.screenshot.empty()) write_png(o.screenshot, image);
             return;
         }
-        // P: name-NNN.png beside --screenshot, or overflight-NNN.png here.
+        // P: name-NNN.png beside --screenshot, or overflight-NNN.png here,
         char suffix[16];
         std::snprintf(suffix, sizeof suffix, "-%03d", index);
         std::filesystem::path p = shot_base;
         p.replace_filename(shot_base.stem().string() + suffix + ".png");
         write_png(p.string(), image);
-        std::fprintf(stderr, "overflight: saved %s\n", p.string().c_str());
+        // and the frame's camera beside it, for render --camera.
+        const std::string json = std::filesystem::path(p).replace_extension(".json").string();
+        write_camera_file(json, camera, camera_map_of(camera, data));
+        std::fprintf(stderr, "overflight: saved %s and %s\n", p.string().c_str(), json.c_str());
     };
     const gl::FlightResult result = gl::run_flight_window(data, wo, methods, save);
     if (!o.record.empty()) write_flight_record(o.record, result.record);
@@ -232,6 +253,8 @@ void add_fly_command(CLI::App& app) {
                     "quadtree over a tile directory: memory bound of the tile cache in MiB")
         ->transform(decimal<int>())
         ->capture_default_str();
+    sub->add_flag("--save-cameras", o->save_cameras,
+                  "With --replay: also write each frame's camera file (frame_00000.json, read by render --camera)");
     sub->add_flag("--no-hud", o->no_hud, "Start with the HUD hidden (H toggles)");
     sub->add_flag("--hidden", o->hidden, "Do not show the window (unattended runs)");
     sub->callback([o, sub] {

@@ -1,5 +1,5 @@
 // `overflight render TERRAIN -o out.png [--method M] [camera options] [--scene FILE]
-//                   [--depth depth.tif] [--stats] [--triangles N] [--error PX]
+//                   [--depth depth.tif] [--save-camera view.json] [--stats] [--triangles N] [--error PX]
 //                   [--lighting sun|baked] [--sun AZ,EL] [--shadows]`
 // (DESIGN sec. 6): one view of a terrain, written as PNG (+ float32 window
 // depth TIFF), with timings and counts as one JSON object on stdout.
@@ -11,6 +11,7 @@
 #include "StandardOutput.h"
 #include "TerrainOptions.h"
 #include "core/Error.h"
+#include "io/CameraFile.h"
 #include "io/Files.h"
 #include "io/ImageWriters.h"
 #include "io/TileDirectory.h"
@@ -33,7 +34,7 @@ void add_render_command(CLI::App& app) {
         CameraArgs camera;
         MethodOptions methods;
         LookArgs looks;
-        std::string out, depth, method = "voxel";
+        std::string out, depth, save_camera, method = "voxel";
         bool stats = false;
     };
     auto args = std::make_shared<Args>();
@@ -46,12 +47,14 @@ void add_render_command(CLI::App& app) {
     add_method_options(*cmd, args->methods);
     add_look_options(*cmd, args->looks);
     cmd->add_option("--depth", args->depth, "also write the OpenGL window depth (float32 TIFF, 1.0 = sky)");
+    cmd->add_option("--save-camera", args->save_camera, "also write the camera of this view (JSON, read by --camera)");
     cmd->add_flag("--stats", args->stats, "print timings and counts as one JSON object on stdout");
     cmd->callback([args, cmd] {
-        reject_empty_names(*cmd, {"-o", "--depth", "--scene", "--color"});
+        reject_empty_names(*cmd, {"-o", "--depth", "--scene", "--color", "--save-camera", "--camera"});
         // A bad output name is refused before the work, not after it.
         check_output_folder(args->out);
         if (!args->depth.empty()) check_output_folder(args->depth);
+        if (!args->save_camera.empty()) check_output_folder(args->save_camera);
         const MethodEntry* row = find_terrain_method(args->method);
         if (!row) throw Error("--method", "unknown method '" + args->method + "' (known: " + terrain_method_names() + ")");
         auto t0 = std::chrono::steady_clock::now();
@@ -72,10 +75,16 @@ void add_render_command(CLI::App& app) {
         // The depth first: if it fails, -o has not been touched; if the PNG
         // fails, the new depth goes too (no half of a result left behind).
         if (!args->depth.empty()) write_depth_tiff(args->depth, *view.depth);
+        bool camera_written = false;
         try {
+            if (!args->save_camera.empty()) {
+                write_camera_file(args->save_camera, camera, camera_map_of(camera, data));
+                camera_written = true;
+            }
             write_png(args->out, *view.color);
         } catch (...) {
             if (!args->depth.empty()) std::remove(args->depth.c_str());
+            if (camera_written) std::remove(args->save_camera.c_str());
             throw;
         }
         const double ms_write = ms_since(t0);

@@ -87,6 +87,7 @@ void add_tile_command(CLI::App& app) {
             w.tile = o;
             w.memory_bytes = std::int64_t(args->memory_mib) << 20;
             if (!args->part.empty()) w.part = parse_tile_part(args->part);
+            w.warn = [&](const std::string& warning) { print_warning(terrain, warning); };
             r = tile_raster_in_windows(terrain, args->out, w);
         } else {
             r = write_tile_directory(load_terrain(args->terrain), args->out, o);

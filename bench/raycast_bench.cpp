@@ -6,7 +6,10 @@
 // ns per ray sample (columns x slices up to far) and frames per second.
 //   bench_raycast_bench --benchmark_filter=. [--benchmark_min_time=1]
 // Environment OVERFLIGHT_BENCH_DEMO_SIZE (default 4097) sets the island size.
+// BM_VoxelImagery* drape imagery at twice the island's resolution
+// (raycast/ImageryTexels.h): their ratio to BM_Voxel* is the imagery's cost.
 #include "core/DemoIsland.h"
+#include "core/ImageryPyramid.h"
 #include "raycast/Atmosphere.h"
 #include "raycast/FloatingHorizon.h"
 #include "raycast/FloatingHorizonLiteral.h"
@@ -52,12 +55,34 @@ Camera bench_camera(const DataSet& ds, Projection proj) {
     return cam;
 }
 
+// Imagery over the island at twice its resolution: its colors, a pattern
+// of texels brightened and darkened in turn so that no two neighbours agree.
+const ImageryPyramid& island_imagery() {
+    static const ImageryPyramid p = [] {
+        const Terrain& t = island().terrain;
+        Image2D<Rgba8> img(2 * t.cols(), 2 * t.rows());
+        for (int r = 0; r < img.height; ++r)
+            for (int c = 0; c < img.width; ++c) {
+                const Rgb8 s = t.color(std::min(r / 2, t.rows() - 1), std::min(c / 2, t.cols() - 1));
+                const int k = (r + c) % 2 ? 20 : -20;
+                auto ch = [k](int v) { return std::uint8_t(std::clamp(v + k, 0, 255)); };
+                img.at(c, r) = Rgba8{ch(s.r), ch(s.g), ch(s.b), 255};
+            }
+        const double hs = t.h_scale();
+        return ImageryPyramid(std::move(img), -0.5 * hs, -0.5 * hs, hs * t.cols(), hs * t.rows());
+    }();
+    return p;
+}
+
 // atmosphere: the aerial perspective (Environment::atmosphere) instead of fog.
-void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool atmosphere = false) {
+// imagery: draped over the painted samples (FloatingHorizon::set_imagery).
+void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool atmosphere = false,
+              bool imagery = false) {
     const DataSet& ds = island();
     const int threads = int(state.range(0));
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     FloatingHorizon fh(ds.terrain);
+    if (imagery) fh.set_imagery(&island_imagery());
     const Camera cam = bench_camera(ds, proj);
     Environment env = ds.environment;
     env.atmosphere = atmosphere;
@@ -76,6 +101,8 @@ void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool
 void BM_Voxel(benchmark::State& s) { run_fast(s, Projection::Shear, {}); }
 // Without run skipping (SliceRunBound): what the max-height pyramid saves.
 void BM_VoxelAtmosphere(benchmark::State& s) { run_fast(s, Projection::Shear, {}, true); }
+void BM_VoxelImagery(benchmark::State& s) { run_fast(s, Projection::Shear, {}, false, true); }
+void BM_VoxelImageryAtmosphere(benchmark::State& s) { run_fast(s, Projection::Shear, {}, true, true); }
 
 // The aerial perspective's per-frame tables for an eye that climbs every
 // frame, as in a flight (the direction and sky tables are rebuilt).
@@ -135,6 +162,8 @@ void BM_VoxelLiteral(benchmark::State& state) {
 
 BENCHMARK(BM_Voxel)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelAtmosphere)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelImagery)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelImageryAtmosphere)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AerialTables)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelNoSkip)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

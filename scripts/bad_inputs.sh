@@ -110,6 +110,12 @@ case_row "render --triangles 1" "" -- "$bin" render demo --demo-size 33 --method
 case_row "render --cache-mib 0" "" -- "$bin" render demo --demo-size 33 --method quadtree --cache-mib 0 -o o11.png
 case_row "tile --tile-size 6" "" -- "$bin" tile demo --demo-size 33 --tile-size 6 -o t6
 case_row "missing terrain file" "" -- "$bin" info nowhere.tif
+printf '{"eye": [1, 2]}' >badcam.json
+case_row "render --camera with a 2-number eye" "cam1.png" -- "$bin" render demo --demo-size 33 --camera badcam.json -o cam1.png
+case_row "render --camera not JSON" "cam2.png" -- "$bin" render demo --demo-size 33 --camera rec.csv -o cam2.png
+case_row "render --look-at lonlat: on the demo (no CRS)" "cam3.png" -- "$bin" render demo --demo-size 33 --look-at lonlat:1,2 -o cam3.png
+case_row "render --crs EPSG:4326 on the demo (no CRS)" "cam4.png" -- "$bin" render demo --demo-size 33 --crs EPSG:4326 --at 1,2 -o cam4.png
+case_row "info --at outside the terrain" "" -- "$bin" info demo --demo-size 33 --at 5000,5000
 echo
 echo "3-frame replay of the voxel method, ms per step (was composite:1225059.59):"
 "$bin" fly demo --demo-size 65 --method voxel --replay rec.csv --frames 3 --size 64x36 --out frames_t | tail -n 1

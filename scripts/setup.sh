@@ -14,7 +14,7 @@ packages=(
   libgdal-dev gdal-bin libglfw3-dev libepoxy-dev libegl-dev libgl1-mesa-dri libegl-mesa0
   libglm-dev libtbb-dev libcli11-dev libtomlplusplus-dev libstb-dev libtinyobjloader-dev
   libtinygltf-dev libimgui-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev xvfb xauth
-  ffmpeg parallel
+  ffmpeg parallel pybind11-dev python3-dev python3-pybind11 python3-numpy python3-pytest python3-gdal
 )
 
 if [ "${OVERFLIGHT_SKIP_INSTALL:-0}" != 1 ]; then

@@ -4,7 +4,6 @@
 
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +18,8 @@ namespace {
 // disagreed with rays to the sun on up to 0.8 % of the samples, two on 0.2 %:
 // tests/cpu/horizon_sweep_test.cpp).
 constexpr int kLines = 2;
+// Sun lines per band (64 samples across): see sweep_band.
+constexpr int kBand = 128;
 
 int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 int ceil_div(int a, int b) { return -floor_div(-a, b); }
@@ -82,67 +83,152 @@ SweepGrid sweep_grid(const Terrain& t, const glm::vec3& sun) {
     return g;
 }
 
+// A block of kBlock consecutive grid lines (plus the next one, for the
+// crossings between the last and it) over the positions [base, top] a band
+// reads on them: world heights in a contiguous array, one row per grid line,
+// with entry top + 1 repeating top's so that a crossing on the last sample
+// may read its neighbour (weighted 0). With the sun lines across columns a
+// grid line's samples lie a whole row apart in memory, a stride that maps
+// them to a handful of cache sets; the block reads the grid in runs along
+// the rows instead (a cache line of heights at a time) and writes the
+// block's ceilings back the same way.
+constexpr int kBlock = 32;
+
+struct BandScratch {
+    std::vector<float> state[kLines]; // state[phase][j - first[phase]]: sun line kLines j + phase
+    std::vector<float> heights, out;  // [line of the block][position - base]
+    int p0[kBlock] = {}, p1[kBlock] = {}; // the samples each grid line of the block writes
+};
+
 // Sweeps the sun lines [J0, J1] over every grid line, in sweep order. Each
 // sun line keeps the exact ceiling of the points on it (a running maximum);
 // sample p of grid line k lies between the sun lines J and J + 1 that cross
 // k around it and gets the ceilings of the two interpolated, written for
-// the samples whose J is in [J0, J1). `state`: scratch.
-void sweep_lines(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ceiling, std::vector<float>& state) {
-    state.assign(std::size_t(J1 - J0 + 1), ShadowCeiling::kOpen);
-    float* const S0 = state.data();
-    const auto S = [S0, J0](int J) -> float& { return S0[J - J0]; }; // sun line J's ceiling, J in [J0, J1]
+// the samples whose J is in [J0, J1).
+//
+// A band is a few dozen samples wide, so that what it touches of a block of
+// grid lines stays in the first-level cache. Each family of sun lines (J =
+// kLines j + phase) keeps its ceilings contiguous in j, so that the inner
+// loops run over contiguous arrays and vectorize.
+void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ceiling, BandScratch& b) {
+    int first[kLines];
+    for (int phase = 0; phase < kLines; ++phase) {
+        first[phase] = ceil_div(J0 - phase, kLines);
+        b.state[phase].assign(std::size_t(std::max(0, floor_div(J1 - phase, kLines) - first[phase] + 1)), ShadowCeiling::kOpen);
+    }
+    const int last = g.length - 1;
     const std::uint16_t* raw = t.heights().data();
     const float vs = t.v_scale(), y0 = t.y_offset();
-    const int last = g.length - 1;
-    auto height = [&](int line, int pos) { return vs * float(raw[g.index(line, pos)]) + y0; };
-    for (int k = 0; k < g.lines; ++k) {
-        const int line = g.first + g.step * k;
-        const double x = double(k) * g.slope;
-        // Samples: sample p lies between sun lines J and J + 1, a fraction f
-        // of the way, with J = kLines p + shift.
-        const double u = -kLines * x;
-        const int shift = int(std::floor(u));
-        const float f = float(u - shift);
-        const int p0 = std::max(0, ceil_div(J0 - shift, kLines)), p1 = std::min(g.length, ceil_div(J1 - shift, kLines));
-        for (int p = p0; p < p1; ++p) {
-            const int J = kLines * p + shift;
-            float c;
-            if (f == 0.0f || p == last) c = S(J);     // on sun line J, or sun line J + 1 beyond the grid
-            else if (p == 0) c = S(J + 1);             // sun line J is off the grid
-            else c = S(J) + f * (S(J + 1) - S(J));
-            ceiling[g.index(line, p)] = c;
+    const std::size_t cols = g.stride_line == 1 ? g.stride_pos : g.stride_line;
+    for (int k0 = 0; k0 < g.lines; k0 += kBlock) {
+        const int n_lines = std::min(kBlock, g.lines - k0), n_load = std::min(kBlock + 1, g.lines - k0);
+        // What grid line k reads lies within 2 samples of the band's sun
+        // lines' crossings [J0 / kLines + x, J1 / kLines + x], x = k slope.
+        const double x_a = double(k0) * g.slope, x_b = double(k0 + n_load - 1) * g.slope;
+        const int base = std::max(0, int(std::floor(double(J0) / kLines + std::min(x_a, x_b))) - 2);
+        const int top = std::min(last, int(std::ceil(double(J1) / kLines + std::max(x_a, x_b))) + 2);
+        if (top < base) continue; // the band's sun lines are off the grid here
+        const int width = top - base + 2;
+        b.heights.resize(std::size_t(n_load) * std::size_t(width));
+        b.out.resize(std::size_t(n_lines) * std::size_t(width));
+        float* const H = b.heights.data();
+        const int line0 = g.first + g.step * k0;
+        if (g.stride_line == 1) { // grid lines are columns: runs along each row
+            for (int p = base; p <= top; ++p) {
+                const std::uint16_t* src = raw + std::size_t(p) * cols + std::size_t(line0);
+                for (int i = 0; i < n_load; ++i) H[i * width + (p - base)] = vs * float(src[i * g.step]) + y0;
+            }
+        } else {
+            for (int i = 0; i < n_load; ++i) {
+                const std::uint16_t* src = raw + std::size_t(line0 + g.step * i) * cols;
+                for (int p = base; p <= top; ++p) H[i * width + (p - base)] = vs * float(src[p]) + y0;
+            }
         }
-        // Each family of sun lines (J = kLines j + phase) crosses this grid
-        // line at positions j + offset.
-        for (int phase = 0; phase < kLines; ++phase) {
-            const double offset = double(phase) / kLines + x;
-            const int fl = int(std::floor(offset));
-            const float fr = float(offset - fl);
-            const int j_lo = std::max(ceil_div(J0 - phase, kLines), int(std::ceil(-offset)));
-            const int j_hi = std::min(floor_div(J1 - phase, kLines), int(std::floor(double(last) - offset)));
-            // The sun lines on this grid line (0 <= j + offset <= length - 1)
-            // meet the terrain here: their ceiling for the next grid line.
-            for (int j = j_lo; j <= j_hi; ++j) {
-                const int ia = j + fl, ib = std::min(ia + 1, last);
-                const float ha = height(line, ia), hb = height(line, ib);
-                float& s = S(kLines * j + phase);
-                s = std::max(ha + fr * (hb - ha), s) - g.rise;
+        for (int i = 0; i < n_load; ++i) H[i * width + width - 1] = H[i * width + width - 2];
+
+        for (int i = 0; i < n_lines; ++i) {
+            const int k = k0 + i;
+            const bool more = k + 1 < g.lines;
+            const float* here = H + i * width - base; // here[pos], pos in [base, top + 1]
+            const float* next = here + width;         // the next grid line's, when `more`
+            const double x = double(k) * g.slope;
+            // Samples: sample p lies between sun lines J and J + 1, a fraction f
+            // of the way, with J = kLines p + shift.
+            const double u = -kLines * x;
+            const int shift = int(std::floor(u));
+            const float f = float(u - shift);
+            const int p0 = std::max(0, ceil_div(J0 - shift, kLines)), p1 = std::min(g.length, ceil_div(J1 - shift, kLines));
+            b.p0[i] = p0;
+            b.p1[i] = p1;
+            if (p0 < p1) {
+                // Sun line J of sample p is family phase_a's j = p + da, J + 1 family phase_b's p + db.
+                const int phase_a = shift - kLines * floor_div(shift, kLines), phase_b = (phase_a + 1) % kLines;
+                const int n = p1 - p0;
+                const float* A = b.state[phase_a].data() + (p0 + floor_div(shift, kLines) - first[phase_a]);
+                const float* B = b.state[phase_b].data() + (p0 + floor_div(shift + 1, kLines) - first[phase_b]);
+                float* c = b.out.data() + i * width + (p0 - base); // c[m]: sample p0 + m
+                if (f == 0.0f) {
+                    for (int m = 0; m < n; ++m) c[m] = A[m]; // on sun line J
+                } else {
+                    for (int m = 0; m < n; ++m) c[m] = A[m] + f * (B[m] - A[m]);
+                    if (p0 == 0) c[0] = B[0];                // sun line J is off the grid
+                    if (p1 == g.length) c[n - 1] = A[n - 1]; // sun line J + 1 is beyond the grid
+                }
             }
-            // Between this grid line and the next a sun line may cross a
-            // grid line of the other family, position m, a fraction t of the
-            // way: there too the height is exact, up-sun of the next crossing.
-            if (k + 1 == g.lines || g.slope == 0.0) continue;
-            const double next_offset = offset + g.slope;
-            const double m0 = g.slope > 0 ? std::floor(next_offset) : std::ceil(next_offset);
-            if (!(g.slope > 0 ? m0 > offset && m0 < next_offset : m0 < offset && m0 > next_offset)) continue;
-            const float t_cross = float((m0 - offset) / g.slope);
-            const float rest = (1.0f - t_cross) * g.rise;
-            const int next = line + g.step, mo = int(m0);
-            for (int j = std::max(j_lo, -mo); j <= std::min(j_hi, last - mo); ++j) {
-                const float ha = height(line, j + mo), hb = height(next, j + mo);
-                float& s = S(kLines * j + phase);
-                s = std::max(s, ha + t_cross * (hb - ha) - rest);
+            for (int phase = 0; phase < kLines; ++phase) {
+                // This family crosses this grid line at positions j + offset.
+                const double offset = double(phase) / kLines + x;
+                const int fl = int(std::floor(offset));
+                const float fr = float(offset - fl);
+                const int j_lo = std::max(ceil_div(J0 - phase, kLines), int(std::ceil(-offset)));
+                const int j_hi = std::min(floor_div(J1 - phase, kLines), int(std::floor(double(last) - offset)));
+                if (j_lo > j_hi) continue;
+                float* S = b.state[phase].data() + (j_lo - first[phase]); // S[m]: sun line kLines (j_lo + m) + phase
+                const int n = j_hi - j_lo + 1;
+                const float rise = g.rise;
+                // The sun lines on this grid line (0 <= j + offset <= length - 1)
+                // meet the terrain here: their ceiling for the next grid line.
+                const float* h = here + (j_lo + fl);
+                for (int m = 0; m < n; ++m) {
+                    const float ha = h[m], hb = h[m + 1];
+                    S[m] = std::max(ha + fr * (hb - ha), S[m]) - rise;
+                }
+                // Between this grid line and the next a sun line may cross a
+                // grid line of the other family, position m0, a fraction t of
+                // the way: there too the height is exact, up-sun of the next crossing.
+                if (!more || g.slope == 0.0) continue;
+                const double next_offset = offset + g.slope;
+                const double m0 = g.slope > 0 ? std::floor(next_offset) : std::ceil(next_offset);
+                if (!(g.slope > 0 ? m0 > offset && m0 < next_offset : m0 < offset && m0 > next_offset)) continue;
+                const float t_cross = float((m0 - offset) / g.slope);
+                const float rest = (1.0f - t_cross) * rise;
+                const int mo = int(m0);
+                const int m_lo = std::max(j_lo, -mo) - j_lo, m_hi = std::min(j_hi, last - mo) - j_lo;
+                const float* ha_at = here + (j_lo + mo);
+                const float* hb_at = next + (j_lo + mo);
+                for (int m = m_lo; m <= m_hi; ++m) {
+                    const float ha = ha_at[m], hb = hb_at[m];
+                    S[m] = std::max(S[m], ha + t_cross * (hb - ha) - rest);
+                }
             }
+        }
+
+        // The block's ceilings back into the grid.
+        const float* O = b.out.data();
+        if (g.stride_line == 1) {
+            int lo = g.length, hi = 0;
+            for (int i = 0; i < n_lines; ++i)
+                if (b.p0[i] < b.p1[i]) lo = std::min(lo, b.p0[i]), hi = std::max(hi, b.p1[i]);
+            for (int p = lo; p < hi; ++p) {
+                float* dst = ceiling + std::size_t(p) * cols + std::size_t(line0);
+                for (int i = 0; i < n_lines; ++i)
+                    if (p >= b.p0[i] && p < b.p1[i]) dst[i * g.step] = O[i * width + (p - base)];
+            }
+        } else {
+            for (int i = 0; i < n_lines; ++i)
+                if (b.p0[i] < b.p1[i])
+                    std::copy(O + i * width + (b.p0[i] - base), O + i * width + (b.p1[i] - base),
+                              ceiling + std::size_t(line0 + g.step * i) * cols + std::size_t(b.p0[i]));
         }
     }
 }
@@ -165,18 +251,15 @@ void sweep_shadow_ceiling(const Terrain& t, const glm::vec3& sun_dir, ShadowCeil
     }
     const SweepGrid g = sweep_grid(t, sun);
     float* ceiling = out.ceiling.data();
-    // Sun lines are independent: bands of them in parallel, a few per worker
-    // for balance, each band sweeping the first line of the next one as well
+    // Sun lines are independent: narrow bands of them (BandScratch) in
+    // parallel, each band sweeping the first line of the next one as well
     // (the samples between the two need both).
-    const int workers = tbb::this_task_arena::max_concurrency();
-    const int count = g.J_max - g.J_min + 1;
-    const int bands = std::clamp(count / 256, 1, 4 * std::max(1, workers));
-    const int band = (count + bands - 1) / bands;
+    const int bands = (g.J_max - g.J_min + kBand) / kBand;
     tbb::parallel_for(0, bands, [&](int b) {
-        const int J0 = g.J_min + b * band, J1 = std::min(g.J_max + 1, J0 + band);
+        const int J0 = g.J_min + b * kBand, J1 = std::min(g.J_max + 1, J0 + kBand);
         if (J0 >= J1) return;
-        thread_local std::vector<float> state;
-        sweep_lines(t, g, J0, J1, ceiling, state);
+        thread_local BandScratch scratch;
+        sweep_band(t, g, J0, J1, ceiling, scratch);
     });
 }
 

@@ -26,7 +26,10 @@
 // within the one cell between them and does not spread down the shadow.
 //
 // Speed: one pass over the grid; the sun lines are independent, swept in
-// bands in parallel (oneTBB), each band sweeping one sun line of the next.
+// narrow bands in parallel (oneTBB), each band sweeping one sun line of the
+// next. A band keeps what it touches of a grid line in the first-level cache
+// and reads each grid line's heights once into a contiguous buffer, so that
+// its inner loops vectorize whichever axis the sun lines cross.
 #include "core/Terrain.h"
 
 #include <glm/vec3.hpp>

@@ -69,7 +69,10 @@ Rgb8 shaded_color(const Terrain& t, int row, int col, float min_height, float ma
 }
 
 void shade_by_elevation(Terrain& t, float sea_level) {
-    const float lo = t.min_height(), hi = t.max_height();
+    shade_by_elevation(t, sea_level, t.min_height(), t.max_height());
+}
+
+void shade_by_elevation(Terrain& t, float sea_level, float lo, float hi) {
     tbb::parallel_for(0, t.rows(), [&](int row) {
         for (int col = 0; col < t.cols(); ++col) t.color(row, col) = shaded_color(t, row, col, lo, hi, sea_level);
     });

@@ -23,5 +23,9 @@ Rgb8 shaded_color(const Terrain& t, int row, int col, float min_height, float ma
 
 // Fills t.colors() with elevation_ramp x (0.35 + 0.65 hillshade). Parallel over rows.
 void shade_by_elevation(Terrain& t, float sea_level);
+// The same with the ramp spread over [min_height, max_height] rather than the
+// terrain's own lowest and highest samples (a window of a larger terrain, or
+// a resampled raster coloured by its source's range).
+void shade_by_elevation(Terrain& t, float sea_level, float min_height, float max_height);
 
 } // namespace overflight

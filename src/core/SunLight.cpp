@@ -24,7 +24,7 @@ bool same_light(const Environment& a, const Environment& b) {
 
 std::uint8_t channel(std::uint8_t albedo, float light) {
     const float v = float(albedo) * light + 0.5f;
-    return std::uint8_t(v > 0.0f ? std::min(v, 255.0f) : 0.0f);
+    return std::uint8_t(std::clamp(v, 0.0f, 255.0f));
 }
 
 } // namespace
@@ -66,33 +66,53 @@ glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit) {
     return env.ambient + env.sun_color * lambert;
 }
 
-void light_colors(const Terrain& t, const Environment& env, const ShadowCeiling* shadow, std::vector<Rgb8>& out) {
+void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
+                  std::vector<Rgb8>& out, LightOutput output) {
+    const bool light_only = output == LightOutput::Light;
     out.resize(t.colors().size());
     const glm::vec3 sun = unit_sun(env);
     const bool day = sun.y > 0;
-    const int rows = t.rows(), cols = t.cols();
-    const float vs = t.v_scale(), y0 = t.y_offset(), hs = t.h_scale();
-    const std::uint16_t* raw = t.heights().data();
-    tbb::parallel_for(0, rows, [&](int row) {
-        // Terrain::sample_normal, written out over one row.
-        const int r0 = std::max(row - 1, 0), r1 = std::min(row + 1, rows - 1);
-        const std::uint16_t* above = raw + t.index(r0, 0);
-        const std::uint16_t* here = raw + t.index(row, 0);
-        const std::uint16_t* below = raw + t.index(r1, 0);
-        const float inv_dz = 1.0f / (hs * float(r1 - r0));
+    // N . L with N in steps of 1 / kScale: the packed integers times L / kScale.
+    const glm::vec3 l = day ? sun / PackedNormals::kScale : glm::vec3(0.0f);
+    const int cols = t.cols();
+    const float vs = t.v_scale(), y0 = t.y_offset();
+    tbb::parallel_for(0, t.rows(), [&](int row) {
+        const std::size_t i0 = t.index(row, 0);
+        const std::uint32_t* n = normals.packed.data() + i0;
+        const std::uint16_t* raw = t.heights().data() + i0;
+        const Rgb8* albedo = t.colors().data() + i0;
+        Rgb8* dst = out.data() + i0;
+        // Two passes over the row, each without branches, so that both vectorize.
+        thread_local std::vector<float> lambert;
+        lambert.resize(std::size_t(cols));
+        float* L = lambert.data();
         for (int col = 0; col < cols; ++col) {
-            const int c0 = std::max(col - 1, 0), c1 = std::min(col + 1, cols - 1);
-            const float dhdx = vs * (float(here[c1]) - float(here[c0])) / (hs * float(c1 - c0));
-            const float dhdz = vs * (float(below[col]) - float(above[col])) * inv_dz;
-            const float h = vs * float(here[col]) + y0;
-            const bool lit = day && (!shadow || !shadow->shadowed(row, col, h));
-            float lambert = 0.0f;
-            if (lit) lambert = std::max((sun.y - dhdx * sun.x - dhdz * sun.z) / std::sqrt(dhdx * dhdx + 1.0f + dhdz * dhdz), 0.0f);
-            const glm::vec3 light = env.ambient + env.sun_color * lambert;
-            const std::size_t i = t.index(row, col);
-            const Rgb8 a = t.colors()[i];
-            out[i] = Rgb8{channel(a.r, light.r), channel(a.g, light.g), channel(a.b, light.b)};
+            const std::uint32_t p = n[col];
+            L[col] = std::max(PackedNormals::x_of(p) * l.x + PackedNormals::y_of(p) * l.y + PackedNormals::z_of(p) * l.z, 0.0f);
         }
+        if (shadow) {
+            const float* ceiling = shadow->ceiling.data() + i0;
+            for (int col = 0; col < cols; ++col) L[col] = vs * float(raw[col]) + y0 < ceiling[col] ? 0.0f : L[col];
+        }
+        // The light per channel, then Rgb8 as bytes: plain loops, which vectorize.
+        static_assert(sizeof(Rgb8) == 3);
+        const std::size_t count = 3 * std::size_t(cols);
+        thread_local std::vector<float> light;
+        light.resize(count);
+        float* LL = light.data();
+        const float amb[3] = {env.ambient.r, env.ambient.g, env.ambient.b};
+        const float sun_rgb[3] = {env.sun_color.r, env.sun_color.g, env.sun_color.b};
+        for (int col = 0; col < cols; ++col) {
+            LL[3 * col] = amb[0] + sun_rgb[0] * L[col];
+            LL[3 * col + 1] = amb[1] + sun_rgb[1] * L[col];
+            LL[3 * col + 2] = amb[2] + sun_rgb[2] * L[col];
+        }
+        const auto* a = reinterpret_cast<const std::uint8_t*>(albedo);
+        auto* d = reinterpret_cast<std::uint8_t*>(dst);
+        if (light_only)
+            for (std::size_t i = 0; i < count; ++i) d[i] = channel(128, LL[i]);
+        else
+            for (std::size_t i = 0; i < count; ++i) d[i] = channel(a[i], LL[i]);
     });
 }
 
@@ -102,6 +122,11 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     lit_for_ = env;
     ++version_;
     baked_ = lighting_is_baked(env);
+    if (baked_ && output_ == LightOutput::Light) {
+        colors_.assign(terrain_.colors().size(), Rgb8{128, 128, 128});
+        baked_ = false; // the light of 1 is what to paint
+        return &colors_;
+    }
     if (baked_) return nullptr;
     const ShadowCeiling* shadow = nullptr;
     if (env.shadows) {
@@ -110,7 +135,8 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
         shadow_valid_ = true;
         shadow = &shadow_;
     }
-    light_colors(terrain_, env, shadow, colors_);
+    if (normals_.packed.empty()) normals_ = pack_normals(terrain_);
+    light_colors(terrain_, normals_, env, shadow, colors_, output_);
     return &colors_;
 }
 

@@ -13,6 +13,7 @@
 // ambient light, Lambert's cosine law).
 #include "core/DataSet.h"
 #include "core/HorizonSweep.h"
+#include "core/PackedNormals.h"
 #include "core/Terrain.h"
 
 #include <glm/vec3.hpp>
@@ -50,11 +51,19 @@ bool lighting_is_baked(const Environment& env);
 // The light at a sample of normal `n` (unit): ambient + sun_color * max(n . L, 0) * lit.
 glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit);
 
+// What a lighting fills per sample: albedo x light (the terrain's colors
+// lit), or the light alone as the color of an albedo of 128, so that 128 is a
+// light of 1 (for renderers that take the albedo from imagery finer than the
+// samples, raycast/ImageryTexels.h).
+enum class LightOutput { Colors, Light };
+
 // Fills `out` (resized to the terrain's samples) with albedo x light per
-// sample, rounded to 8 bits. `shadow` (null: nothing shadowed) must have
-// been computed for env.sun_dir. Parallel over rows.
-void light_colors(const Terrain& terrain, const Environment& env, const ShadowCeiling* shadow,
-                  std::vector<Rgb8>& out);
+// sample, rounded to 8 bits, from the terrain's normals packed by
+// pack_normals (within one color level of sample_light with
+// Terrain::sample_normal: PackedNormals.h). `shadow` (null: nothing
+// shadowed) must have been computed for env.sun_dir. Parallel over rows.
+void light_colors(const Terrain& terrain, const PackedNormals& normals, const Environment& env,
+                  const ShadowCeiling* shadow, std::vector<Rgb8>& out, LightOutput output = LightOutput::Colors);
 
 // The lit colors of one terrain for the environment of the frame, recomputed
 // only when the sun, its colors or Environment::shadows change (the horizon
@@ -63,20 +72,24 @@ void light_colors(const Terrain& terrain, const Environment& env, const ShadowCe
 class TerrainLighting {
 public:
     // Keeps a reference to terrain (it must outlive this object).
-    explicit TerrainLighting(const Terrain& terrain) : terrain_(terrain) {}
+    explicit TerrainLighting(const Terrain& terrain, LightOutput output = LightOutput::Colors)
+        : terrain_(terrain), output_(output) {}
 
     // The colors to paint for `env`: nullptr when lighting is baked (the
-    // terrain's own colors), else the lit colors. Valid until the next call.
+    // terrain's own colors), else the lit colors; with LightOutput::Light,
+    // the light (128 everywhere when baked). Valid until the next call.
     const std::vector<Rgb8>* colors(const Environment& env);
     // Changes each time colors() returns different colors.
     std::uint64_t version() const { return version_; }
 
 private:
     const Terrain& terrain_;
+    LightOutput output_;
     bool valid_ = false, baked_ = false;
     Environment lit_for_;
     ShadowCeiling shadow_;
     bool shadow_valid_ = false;
+    PackedNormals normals_; // packed on the first lit call
     std::vector<Rgb8> colors_;
     std::uint64_t version_ = 0;
 };

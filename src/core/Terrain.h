@@ -9,10 +9,13 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace overflight {
+
+class ImageryPyramid;
 
 class Terrain {
 public:
@@ -35,6 +38,12 @@ public:
     // One color per sample, row-major (color maps per grid cell are normalised by the loaders).
     std::vector<Rgb8>& colors() { return colors_; }
     const std::vector<Rgb8>& colors() const { return colors_; }
+
+    // An orthophoto finer than the samples (core/ImageryPyramid.h), shared by
+    // copies, or null; colors() then hold it averaged to one color per sample.
+    const ImageryPyramid* imagery() const { return imagery_.get(); }
+    const std::shared_ptr<const ImageryPyramid>& imagery_ptr() const { return imagery_; }
+    void set_imagery(std::shared_ptr<const ImageryPyramid> imagery) { imagery_ = std::move(imagery); }
 
     std::uint16_t raw(int row, int col) const { return heights_[index(row, col)]; }
     std::uint16_t& raw(int row, int col) { return heights_[index(row, col)]; }
@@ -70,6 +79,7 @@ private:
     float y_offset_ = 0.0f;
     std::vector<std::uint16_t> heights_;
     std::vector<Rgb8> colors_;
+    std::shared_ptr<const ImageryPyramid> imagery_;
 };
 
 // World coordinates are floats (DESIGN sec. 1). Beyond 2^24 world units a

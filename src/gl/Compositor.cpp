@@ -35,6 +35,7 @@ void depth_test_on() {
 
 Compositor::Compositor(const Terrain& terrain, const Scene& scene) : terrain_(terrain), vehicle_(terrain) {
     objects_.set_scene(scene, terrain);
+    if (const ImageryPyramid* imagery = terrain.imagery()) imagery_texture_.upload(*imagery);
 }
 
 void Compositor::prepare(ResidentSurface surface) {
@@ -65,8 +66,13 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
     camera.validate();
     if (camera.width != target.width() || camera.height != target.height())
         throw Error("camera", "image size differs from the render target");
-    frame_.set_shadow(terrain_shadow(environment, timer));
+    const glm::vec4 shadow = terrain_shadow(environment, timer);
+    frame_.set_shadow(shadow);
+    imagery_texture_.bind();
+    frame_.set_imagery(imagery_texture_.uniform());
     frame_.update(camera, environment, terrain_);
+    object_shadow_.update(shadow.x > 0, glm::vec3(frame_.block().sun_dir), objects_, frame_.block());
+    object_shadow_.bind();
     frame_.bind();
     target.bind();
     depth_test_on();
@@ -80,6 +86,14 @@ CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, 
     if (out.kind == MethodOutputKind::Images) {
         draw_images(out, camera, target, timer, options);
         if (!options.objects) return counts;
+        if (object_shadow_.active() && !environment.baked) {
+            // The pixels an object's shadow can reach, down to the lowest terrain.
+            const PixelRect rect = screen_rect(
+                ObjectShadowMap::reach(objects_.bounds(), glm::vec3(frame_.block().sun_dir), terrain_.min_height()), camera);
+            timer.begin_gl("object_shadows");
+            object_shadow_pass_.draw(*out.depth, camera, rect);
+            timer.end_gl();
+        }
     } else {
         timer.begin_gl("sky");
         glClearDepth(1.0);

@@ -23,8 +23,11 @@
 // With Environment::shadows the terrain's shadow ceiling for the sun
 // (core/HorizonSweep.h) is swept when the sun moves ("shadow_sweep") and
 // uploaded as a texture, so that the mesh methods' terrain and every
-// method's objects receive the terrain's cast shadows in shade(). Objects
-// cast none onto the terrain.
+// method's objects receive the terrain's cast shadows in shade(); the
+// objects cast theirs onto the terrain and each other through a shadow map
+// from the sun (ObjectShadowMap, rendered when the sun moves), read in
+// shade() and, on the ray casters' images, by ShadowScreenPass
+// ("object_shadows"). The vehicle casts none.
 //
 // Fog used by every program (the ray caster matches it, raycast/Atmosphere.h):
 //     f = exp(-fog_density * d),  d = |P - eye| (eye-space distance),
@@ -42,8 +45,11 @@
 #include "gl/FlightVehicle.h"
 #include "gl/FrameUniforms.h"
 #include "gl/ObjectRenderer.h"
+#include "gl/ObjectShadowMap.h"
 #include "gl/RenderTarget.h"
+#include "gl/ImageryTexture.h"
 #include "gl/ShadowCeilingTexture.h"
+#include "gl/ShadowScreenPass.h"
 #include "gl/SkyPass.h"
 #include "gl/StepTimer.h"
 #include "gl/StreamedMesh.h"
@@ -103,6 +109,9 @@ private:
     ShadowCeiling shadow_;
     bool shadow_valid_ = false;
     ShadowCeilingTexture shadow_texture_;
+    ObjectShadowMap object_shadow_;
+    ShadowScreenPass object_shadow_pass_;
+    ImageryTexture imagery_texture_;
     SkyPass sky_;
     WaterPlane water_{terrain_};
     ObjectRenderer objects_;

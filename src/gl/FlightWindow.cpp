@@ -197,8 +197,8 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
             // Screenshots are taken before the HUD so they match a replay.
             if ((take_shot || session.last_frame()) && screenshot) {
                 window_target.read_color(shot);
-                if (take_shot) screenshot(shot, shots++);
-                if (session.last_frame()) screenshot(shot, -1);
+                if (take_shot) screenshot(shot, cam, shots++);
+                if (session.last_frame()) screenshot(shot, cam, -1);
             }
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             glViewport(0, 0, fb_w, fb_h);

@@ -9,7 +9,7 @@
 // Keys (CMSC 23700 hovercraft project sec. 3.1, plus Tab, P and H): UP
 // accelerate, DOWN brake, LEFT/RIGHT turn, f fog (off, GL_EXP, atmosphere), 1 lighting, W wireframe,
 // + / _ level of detail x / ÷ sqrt 2, Tab next method (same camera), P
-// screenshot, H HUD, q quit.
+// screenshot (with the frame's camera file), H HUD, q quit.
 //
 // Based on: CMSC 23700 project 2a, "sports utility hovercraft", sec. 3 and
 // 4.1-4.2; Szenberg et al. 1997 sec. 5 (any terrain composited with the same
@@ -58,10 +58,10 @@ struct FlightResult {
     long long physics_steps = 0;
 };
 
-// Called with the frame's pixels when P is pressed (index 0, 1, 2, ...) and,
+// Called with the frame's pixels and camera when P is pressed (index 0, 1, 2, ...) and,
 // with index -1, after the last frame of an unattended run. The caller writes
 // the file (the io layer owns files).
-using ScreenshotSink = std::function<void(const ColorImage& image, int index)>;
+using ScreenshotSink = std::function<void(const ColorImage& image, const Camera& camera, int index)>;
 
 // Opens the window and runs until q, the window is closed, or the session's
 // frames are done. Methods are built from the table with `methods`. Throws

@@ -23,6 +23,7 @@ struct FrameBlock {
     glm::vec4 air_beta, air_rayleigh, air_haze;
     glm::vec4 shadow; // ShadowCeilingTexture::uniform(), or 0: no terrain shadows
     glm::vec4 look;   // x: 1 while baked surfaces are drawn, y: 1 while the terrain is (set_terrain_pass)
+    glm::vec4 imagery; // ImageryTexture::uniform(), or 0: no imagery finer than the samples
 };
 
 class FrameUniforms {
@@ -34,6 +35,8 @@ public:
     void update(const Camera& camera, const Environment& env, const Terrain& terrain);
     // The terrain shadows of the next update()s (ShadowCeilingTexture::uniform(), 0 = none).
     void set_shadow(const glm::vec4& shadow) { block_.shadow = shadow; }
+    // The imagery of the next update()s (ImageryTexture::uniform(), 0 = none).
+    void set_imagery(const glm::vec4& imagery) { block_.imagery = imagery; }
     // Whether what is drawn next is the terrain, and baked (no sun on it): updates the block.
     void set_terrain_pass(bool terrain, bool baked);
     // Binds the block to uniform binding 0.

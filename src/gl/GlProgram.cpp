@@ -49,9 +49,19 @@ layout(std140, binding = 0) uniform Frame {
     vec4 shadow;       // x: 1 = the terrain casts shadows; y: texels per world unit
     vec4 look;         // x: 1 = what is drawn now is baked (the terrain's colors with --lighting baked): no sun;
                        // y: 1 = what is drawn now is the terrain
+    vec4 imagery;      // 1 / extent x, 1 / extent z, origin x, z of the imagery (ImageryTexture); 0: none
 };
 // The terrain's shadow ceiling (core/HorizonSweep.h), one texel per sample.
 layout(binding = 7) uniform sampler2D shadow_ceiling;
+// The objects' shadow map from the sun (gl/ObjectShadowMap.h).
+layout(std140, binding = 3) uniform ObjectShadow {
+    mat4 object_sun_proj;  // multiplies (world - object_origin)
+    vec4 object_origin;
+    vec4 object_shadow;    // x: 1 = objects cast shadows; y: depth bias
+};
+layout(binding = 8) uniform sampler2DShadow object_shadow_map;
+// The terrain's imagery, mipmapped (core/ImageryPyramid.h), over its world rectangle.
+layout(binding = 10) uniform sampler2D imagery_texture;
 
 vec4 clip_of(vec3 world) { return view_proj * vec4(world - eye.xyz, 1.0); }
 
@@ -107,12 +117,28 @@ float sun_visible(vec3 world) {
     float above = look.y > 0.0 ? 0.0 : world.y - ground;
     return mix(mix(step(t00.r, above), step(t10.r, above), f.x), mix(step(t01.r, above), step(t11.r, above), f.x), f.y);
 }
+// How much of the sun `world` sees past the objects (1 outside the map).
+float object_sun_visible(vec3 world) {
+    if (object_shadow.x == 0.0) return 1.0;
+    vec4 p = object_sun_proj * vec4(world - object_origin.xyz, 1.0);
+    vec3 q = p.xyz / p.w * 0.5 + 0.5;
+    if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))) || q.z <= 0.0) return 1.0;
+    return texture(object_shadow_map, vec3(q.xy, min(q.z, 1.0) - object_shadow.y));
+}
+// A terrain fragment's albedo: the imagery at its world (x, z) when the
+// terrain has imagery finer than its samples (whose per-vertex colors are
+// that imagery averaged), else the vertex color.
+vec3 terrain_albedo(vec3 albedo, vec3 world) {
+    if (imagery.x > 0.0 && look.y > 0.0) return texture(imagery_texture, (world.xz - imagery.zw) * imagery.xy).rgb;
+    return albedo;
+}
 // Lambert sun + ambient (hovercraft sun lighting; core/SunLight.h is the same
 // per sample: no sun at or below the horizon, none in the terrain's shadow),
 // then fogged().
 vec3 shade(vec3 albedo, vec3 n, vec3 world) {
+    albedo = terrain_albedo(albedo, world);
     if (look.x > 0.0) return fogged(albedo, world);
-    float lambert = sun_dir.y > 0.0 ? max(dot(normalize(n), sun_dir.xyz), 0.0) * sun_visible(world) : 0.0;
+    float lambert = sun_dir.y > 0.0 ? max(dot(normalize(n), sun_dir.xyz), 0.0) * sun_visible(world) * object_sun_visible(world) : 0.0;
     vec3 lit = albedo * (ambient.rgb + sun_color.rgb * lambert);
     return fogged(lit, world);
 }

@@ -38,6 +38,10 @@ public:
                 FrameTimings* timings = nullptr);
 
     std::string renderer_name() const { return Context::renderer(); }
+    // Makes the renderer's context current on the calling thread: a caller
+    // rendering from several threads makes it current before destroying the
+    // renderer, whose GL objects are deleted in that context.
+    void make_current() { context_->make_current(); }
     Compositor& compositor() { return *compositor_; }
 
 private:

@@ -24,6 +24,7 @@ public:
     // The pixels the objects can cover for `camera` (core screen_rect of their
     // bounds): where a composite needs the ray caster's depth.
     PixelRect screen_rect(const Camera& camera) const { return overflight::screen_rect(bounds_, camera); }
+    const std::vector<WorldBox>& bounds() const { return bounds_; }
 
 private:
     StreamedMesh solids_;

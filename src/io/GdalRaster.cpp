@@ -5,12 +5,14 @@
 #include "io/GdalRaster.h"
 
 #include "core/Error.h"
+#include "core/ImageryFallback.h"
 #include "core/Shading.h"
 #include "core/Terrain.h"
 #include "io/Gdal.h"
 #include "io/GdalReducedReads.h"
 #include "io/GdalSource.h"
 #include "io/HeightMapping.h"
+#include "io/ImageryRaster.h"
 #include "io/UsgsDemHeader.h"
 
 #include <cpl_conv.h>
@@ -33,20 +35,12 @@ namespace overflight {
 
 namespace {
 
-// Marks no-data inside our float buffers: far below any elevation on Earth,
-// exactly representable, and distinct from every source's own no-data value.
-constexpr float kNoData = -1.0e30f;
 
 std::string fmt(double v, int precision = 6) {
     std::ostringstream o;
     o.precision(precision);
     o << v;
     return o.str();
-}
-
-std::string lower(std::string s) {
-    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
 }
 
 std::string srs_name(OGRSpatialReferenceH srs) {
@@ -80,16 +74,6 @@ constexpr double kLoadBytesPerSample = 16;
 // Samples a survey reads for the elevation range and no-data share: 64 blocks
 // of a tiled GeoTIFF, a few hundred rows of a striped one.
 constexpr long long kSurveySamples = 1LL << 22;
-
-// Record A of a USGS DEM is its first 1024-byte record (Zamri, sec. 3).
-std::string usgs_record_a_text(const std::string& path) {
-    std::string head(1024, ' ');
-    if (FILE* f = std::fopen(path.c_str(), "rb")) {
-        head.resize(std::fread(head.data(), 1, head.size(), f));
-        std::fclose(f);
-    }
-    return head;
-}
 
 struct Grid {
     int rows = 0, cols = 0;
@@ -148,23 +132,55 @@ Grid decimated_grid_of(GDALDatasetH ds, const std::string& path, int factor) {
     return g;
 }
 
-// Fills kNoData samples by inverse-distance interpolation from valid
-// neighbours (GDALFillNodata, the algorithm of gdal_fillnodata), searching as
-// far as needed: voids of any size are filled, never left as spikes.
-void fill_nodata(Grid& g, const std::string& subject) {
-    // Its cost grows with the search distance, so first a short search (enough
-    // for SRTM voids and the wedges a UTM reprojection leaves at the corners of
-    // a 1-degree tile), and a search over the whole grid only if that left any.
-    const int whole = std::max(g.rows, g.cols);
-    for (const int distance : {std::min(256, whole), whole}) {
-        gdal::Dataset ds = grid_dataset(g, subject);
-        GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
-        CPLErrorReset();
-        if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
-            throw Error(subject, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
-        read_band(band, g.cols, g.rows, g.z, subject);
-        if (std::find(g.z.begin(), g.z.end(), kNoData) == g.z.end() || distance == whole) break;
+// One GDALFillNodata pass over `g` searching up to `distance` samples.
+void fill_within(Grid& g, int distance, const std::string& subject) {
+    gdal::Dataset ds = grid_dataset(g, subject);
+    GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+    CPLErrorReset();
+    if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
+        throw Error(subject, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
+    read_band(band, g.cols, g.rows, g.z, subject);
+}
+
+// Sets the kNoData samples 4-connected to the grid's border to `value`;
+// returns whether any kNoData sample is left (a void enclosed by data).
+bool set_border_voids(Grid& g, float value) {
+    std::vector<std::size_t> stack;
+    const auto push = [&](int i, int j) {
+        const std::size_t k = std::size_t(i) * std::size_t(g.cols) + std::size_t(j);
+        if (g.z[k] != kNoData) return;
+        g.z[k] = value;
+        stack.push_back(k);
+    };
+    for (int i = 0; i < g.rows; ++i) push(i, 0), push(i, g.cols - 1);
+    for (int j = 0; j < g.cols; ++j) push(0, j), push(g.rows - 1, j);
+    while (!stack.empty()) {
+        const std::size_t k = stack.back();
+        stack.pop_back();
+        const int i = int(k / std::size_t(g.cols)), j = int(k % std::size_t(g.cols));
+        if (i > 0) push(i - 1, j);
+        if (i + 1 < g.rows) push(i + 1, j);
+        if (j > 0) push(i, j - 1);
+        if (j + 1 < g.cols) push(i, j + 1);
     }
+    return std::find(g.z.begin(), g.z.end(), kNoData) != g.z.end();
+}
+
+// Fills kNoData samples by inverse-distance interpolation from valid
+// neighbours (GDALFillNodata, the algorithm of gdal_fillnodata) within
+// kFillSearchDistance; what that leaves gets `lowest` (never a spike) where
+// it reaches the grid's border: the wedges a reprojection leaves outside the
+// source, whose search over the whole grid took most of a large geographic
+// load, as the windowed tiler's windows do. A void enclosed by data is
+// searched for as far as needed. The cost of a pass grows with its search
+// distance times the samples left to fill.
+void fill_nodata(Grid& g, float lowest, const std::string& subject) {
+    const int whole = std::max(g.rows, g.cols);
+    fill_within(g, std::min(kFillSearchDistance, whole), subject);
+    if (!set_border_voids(g, lowest)) return;
+    fill_within(g, whole, subject);
+    for (float& v : g.z)
+        if (v == kNoData) v = lowest;
 }
 
 struct ColorResult {
@@ -172,50 +188,14 @@ struct ColorResult {
     std::string description;
 };
 
-// Resamples the color raster onto the DEM grid (DESIGN sec. 4: `--color FILE`).
-ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
+// Resamples the color raster onto the DEM grid (DESIGN sec. 4: `--color FILE`);
+// where it does not cover the grid (ImageryFallback.h) the terrain keeps the
+// colors it holds, blended by the warp's coverage alpha.
+ColorResult color_on_grid(const std::string& color_path, const Grid& dem, const std::vector<Rgb8>& fallback) {
     gdal::Dataset src = gdal::open_raster(color_path);
-    const int bands = GDALGetRasterCount(src.get());
-    std::vector<int> pick;
-    int r = 0, g = 0, b = 0;
-    for (int k = 1; k <= bands; ++k) {
-        const GDALColorInterp ci = GDALGetRasterColorInterpretation(GDALGetRasterBand(src.get(), k));
-        if (ci == GCI_RedBand && !r) r = k;
-        if (ci == GCI_GreenBand && !g) g = k;
-        if (ci == GCI_BlueBand && !b) b = k;
-    }
     std::string bands_used;
-    std::vector<std::string> opts;
-    GDALRasterBandH first = GDALGetRasterBand(src.get(), 1);
-    const bool palette = bands == 1 && GDALGetRasterColorTable(first) != nullptr;
-    if (r && g && b) {
-        pick = {r, g, b};
-        bands_used = "RGB bands";
-    } else if (bands >= 6) {
-        pick = {3, 2, 1}; // Landsat TM/ETM+: bands 3, 2, 1 are red, green, blue
-        bands_used = "bands 3,2,1";
-    } else if (bands >= 3) {
-        pick = {1, 2, 3};
-        bands_used = "bands 1,2,3";
-    } else if (palette) {
-        pick = {1};
-        opts = {"-expand", "rgb"};
-        bands_used = "palette";
-    } else {
-        pick = {1};
-        bands_used = "band 1 as grey";
-    }
-    for (int k : pick) {
-        opts.push_back("-b");
-        opts.push_back(std::to_string(k));
-    }
     bool rescaled = false;
-    if (GDALGetRasterDataType(GDALGetRasterBand(src.get(), pick[0])) != GDT_Byte) {
-        // Each band stretched from its own min..max: a 16-bit orthophoto or a
-        // reflectance raster would otherwise be black or clipped.
-        opts.insert(opts.end(), {"-ot", "Byte", "-scale"});
-        rescaled = true;
-    }
+    std::vector<std::string> opts = color_band_options(src.get(), bands_used, rescaled);
     double cgt[6];
     const bool color_geo = GDALGetGeoTransform(src.get(), cgt) == CE_None && GDALGetSpatialRef(src.get()) != nullptr;
     const bool warp = color_geo && dem.georeferenced && !dem.wkt.empty();
@@ -238,27 +218,40 @@ ColorResult color_on_grid(const std::string& color_path, const Grid& dem) {
         picked = gdal::warp(picked.get(),
                             {"-t_srs", dem.wkt, "-te", fmt(xmin, 17), fmt(std::min(ymin, ymax), 17), fmt(xmax, 17),
                              fmt(std::max(ymin, ymax), 17), "-ts", std::to_string(dem.cols), std::to_string(dem.rows),
-                             "-r", method, "-ovr", "NONE"},
+                             "-r", method, "-ovr", "NONE", "-dstalpha"},
                             color_path);
         how = std::string("warped onto the DEM grid (") + method + ")";
     }
     const int out_bands = GDALGetRasterCount(picked.get());
+    const int colour_bands = warp ? out_bands - 1 : out_bands;
     std::vector<std::uint8_t> channel(std::size_t(dem.rows) * std::size_t(dem.cols));
+    std::vector<std::uint8_t> alpha(channel.size(), 255);
     ColorResult result;
     result.image.resize(dem.cols, dem.rows);
+    auto read = [&](int band_index, std::vector<std::uint8_t>& into) {
+        CPLErrorReset();
+        if (GDALRasterIO(GDALGetRasterBand(picked.get(), band_index), GF_Read, 0, 0, dem.cols, dem.rows, into.data(),
+                         dem.cols, dem.rows, GDT_Byte, 0, 0) != CE_None)
+            throw Error(color_path, "unreadable raster: " + gdal::last_error("read failed"));
+    };
+    if (warp) read(out_bands, alpha);
     bool any = false;
     for (int c = 0; c < 3; ++c) {
-        GDALRasterBandH band = GDALGetRasterBand(picked.get(), std::min(c + 1, out_bands));
-        CPLErrorReset();
-        if (GDALRasterIO(band, GF_Read, 0, 0, dem.cols, dem.rows, channel.data(), dem.cols, dem.rows, GDT_Byte, 0, 0) !=
-            CE_None)
-            throw Error(color_path, "unreadable raster: " + gdal::last_error("read failed"));
+        read(std::min(c + 1, colour_bands), channel);
         for (std::size_t i = 0; i < channel.size(); ++i) {
             (&result.image.pixels[i].r)[c] = channel[i];
-            any = any || channel[i] != 0;
+            any = any || (channel[i] != 0 && alpha[i] != 0);
         }
     }
     if (!any) throw Error(color_path, "color raster is entirely black on the terrain (does it overlap the DEM?)");
+    for (std::size_t i = 0; i < alpha.size(); ++i) {
+        if (alpha[i] == 255) continue;
+        const float w = float(alpha[i]) / 255.0f;
+        Rgb8& p = result.image.pixels[i];
+        const Rgb8 f = fallback[i];
+        for (int c = 0; c < 3; ++c)
+            (&p.r)[c] = std::uint8_t(std::lround(float((&p.r)[c]) * w + float((&f.r)[c]) * (1.0f - w)));
+    }
     result.description = color_path + " (" + bands_used + (rescaled ? ", rescaled to 8 bits" : "") + ", " + how + ")";
     return result;
 }
@@ -281,33 +274,6 @@ std::vector<std::pair<std::string, std::string>> metadata_of(GDALDatasetH ds, co
     return out;
 }
 
-// The sizes a raster declares, checked before anything is allocated from them:
-// a few bytes of header can claim billions of samples (a sparse GeoTIFF, a
-// USGS Record A with a false profile count).
-void check_declared_size(GDALDatasetH ds, const std::string& path, const std::string& driver) {
-    if (driver == "USGSDEM") {
-        // GDAL sizes the grid by Record A's profile count; each profile needs a
-        // Record B in the file (USGS DEM Standards Part 2).
-        const long profiles = usgs_profile_count(usgs_record_a_text(path));
-        std::error_code ec;
-        const auto bytes = std::filesystem::file_size(path, ec);
-        if (profiles > kMaxSide)
-            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles, more than " +
-                                  std::to_string(kMaxSide));
-        if (!ec && profiles > 0 && (long long)bytes < usgs_minimum_file_size(profiles))
-            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles but the file holds only " +
-                                  std::to_string(bytes) + " bytes (at least " +
-                                  std::to_string(kUsgsRecordBHeaderBytes) + " per profile)");
-    }
-    const int cols = GDALGetRasterXSize(ds), rows = GDALGetRasterYSize(ds);
-    if (rows < 2 || cols < 2)
-        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) +
-                              ", a terrain needs at least 2x2 samples");
-    if (rows > kMaxSide || cols > kMaxSide)
-        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", more than " +
-                              std::to_string(kMaxSide) + " samples per side");
-}
-
 // Loading holds the elevations as floats, a float copy for GDAL's no-data
 // filling or warping, and the terrain's 16-bit heights and RGB colors: a
 // cols x rows read is refused before allocating when that exceeds the
@@ -319,20 +285,6 @@ void check_memory(const std::string& path, int cols, int rows) {
         throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", loading it needs about " +
                               fmt(needed / 1073741824.0, 3) + " GiB, more than this machine's " +
                               fmt(memory / 1073741824.0, 3) + " GiB of memory");
-}
-
-// What a user should know about the bands: only band 1 is read as heights.
-void warn_about_bands(GDALDatasetH ds, TerrainInfo& info) {
-    const int bands = GDALGetRasterCount(ds);
-    GDALRasterBandH first = GDALGetRasterBand(ds, 1);
-    const GDALColorInterp ci = GDALGetRasterColorInterpretation(first);
-    if (GDALGetRasterColorTable(first) != nullptr)
-        info.warnings.push_back("band 1 is a palette image: its color indices are taken as heights");
-    else if (bands > 1)
-        info.warnings.push_back(
-            "has " + std::to_string(bands) + " bands; band 1 (" + lower(GDALGetColorInterpretationName(ci)) +
-            ") is taken as heights" +
-            (ci == GCI_RedBand ? " (an RGB image? give heights as TERRAIN and the image as --color)" : ""));
 }
 
 // Band 1's values as metres: its no-data value (and NaN) mark voids, then its
@@ -523,8 +475,12 @@ double to_square_metric_cells(Grid& grid, const MetricGrid& m, int factor, const
         } else if (m.finer_cells) {
             warp_opts.insert(warp_opts.end(), {"-tr", fmt(m.res, 17), fmt(m.res, 17)});
         }
-        warp_opts.insert(warp_opts.end(), {"-r", "bilinear", "-srcnodata", fmt(kNoData, 9), "-dstnodata",
-                                           fmt(kNoData, 9), "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA"});
+        const std::vector<std::string> common = metric_warp_options();
+        warp_opts.insert(warp_opts.end(), common.begin(), common.end());
+        warp_opts.insert(warp_opts.end(), {"-srcnodata", fmt(kNoData, 9)});
+        // A decimated read is rendered, never tiled: GDAL's approximate
+        // transformer saves it a projection per sample.
+        if (factor > 1) warp_opts.insert(warp_opts.end(), {"-et", "0.125"});
         gdal::Dataset source = grid_dataset(grid, path);
         gdal::Dataset warped = gdal::warp(source.get(), warp_opts, path);
         grid = grid_of(warped.get(), path);
@@ -542,21 +498,16 @@ double to_square_metric_cells(Grid& grid, const MetricGrid& m, int factor, const
     return hs * m.metres_per_unit;
 }
 
-// Fills the no-data samples from their valid neighbours (the rest: the lowest
-// valid elevation, never a spike), recording what was done in `info`.
-void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long long source_voids,
-                     bool& integral) {
+// Fills the no-data samples from their valid neighbours (the rest: `lowest`,
+// the lowest valid elevation of the source, never a spike), recording what
+// was done in `info`.
+void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long long source_voids, float lowest,
+                bool& integral) {
     long long missing = 0;
     for (float v : grid.z) missing += v == kNoData;
     if (missing == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
     if (missing > 0) {
-        fill_nodata(grid, path);
-        // Whatever the search could not reach keeps the lowest valid elevation, never a spike.
-        float lowest = std::numeric_limits<float>::max();
-        for (float v : grid.z)
-            if (v != kNoData) lowest = std::min(lowest, v);
-        for (float& v : grid.z)
-            if (v == kNoData) v = lowest;
+        fill_nodata(grid, lowest, path);
     }
     // Interpolated voids of an integer DEM are rounded to whole metres, so the
     // DEM keeps its exact 1 m mapping; resampled grids are no longer integral.
@@ -572,13 +523,13 @@ void fill_voids(Grid& grid, const std::string& path, TerrainInfo& info, long lon
 }
 
 DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::string& driver_name,
-                     const std::string& color_path, int max_direct_size) {
+                     const std::string& color_path, int max_direct_size, std::size_t imagery_bytes) {
     DataSet data;
     TerrainInfo& info = data.info;
     info.source = path;
     info.kind = "gdal";
     info.driver = driver_name;
-    warn_about_bands(src_ds, info);
+    append_band_warnings(src_ds, info.warnings);
     info.source_rows = GDALGetRasterYSize(src_ds);
     info.source_cols = GDALGetRasterXSize(src_ds);
     const MetricGrid metric = metric_grid_of(src_ds, path);
@@ -590,6 +541,16 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     const long long voids = heights_to_metres(grid, src_ds, path, info, integral);
     if (voids == (long long)grid.z.size()) throw Error(path, "raster is entirely no-data");
     info.metadata = metadata_of(src_ds, path, info.driver);
+    // The height mapping and the colour ramp span the source's elevations:
+    // reprojected and filled values are weighted means of them, so they lie
+    // within, and the windowed tiler (io/WindowedTiler.h), which cannot see
+    // the whole reprojected grid, knows the same range from its first pass.
+    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+    for (float v : grid.z)
+        if (v != kNoData) {
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
 
     const double hs = to_square_metric_cells(grid, metric, factor, path, info);
     if (const std::string problem = horizontal_scale_problem(grid.rows, grid.cols, hs); !problem.empty())
@@ -603,13 +564,8 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
                                 " (overflight tile keeps the full resolution)");
     }
 
-    fill_voids(grid, path, info, voids, integral);
+    fill_voids(grid, path, info, voids, lo, integral);
 
-    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
-    for (float v : grid.z) {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-    }
     const HeightMapping mapping = choose_height_mapping(lo, hi, integral);
     data.terrain = Terrain(grid.rows, grid.cols, float(hs), mapping.v_scale, mapping.y_offset);
     info.georeferenced = grid.georeferenced;
@@ -620,11 +576,25 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
     quantise_heights(grid.z, mapping, data.terrain.heights());
 
     if (!color_path.empty()) {
-        ColorResult color = color_on_grid(color_path, grid);
-        data.terrain.colors() = std::move(color.image.pixels);
-        info.color_source = color.description;
-    } else {
+        // The elevation ramp first: the fallback wherever the imagery does not cover the terrain.
         shade_by_elevation(data.terrain, 0.0f);
+        ImageryTarget target{grid.rows, grid.cols, hs, grid.georeferenced, {}, grid.wkt};
+        std::copy(grid.gt, grid.gt + 6, target.gt.begin());
+        ImageryLoad imagery = load_imagery(color_path, target, imagery_bytes);
+        if (imagery.pyramid) {
+            blend_over_terrain_colors(*imagery.pyramid, data.terrain);
+            colors_from_imagery(*imagery.pyramid, data.terrain);
+            data.terrain.set_imagery(std::move(imagery.pyramid));
+            info.color_source = imagery.description;
+            if (!imagery.warning.empty()) info.warnings.push_back(imagery.warning);
+        } else {
+            ColorResult color = color_on_grid(color_path, grid, data.terrain.colors());
+            data.terrain.colors() = std::move(color.image.pixels);
+            info.color_source = color.description;
+        }
+    } else {
+        const auto [world_lo, world_hi] = mapped_range(mapping, lo, hi);
+        shade_by_elevation(data.terrain, 0.0f, world_lo, world_hi);
         info.color_source = "elevation ramp + hillshade";
     }
     return data;
@@ -632,13 +602,14 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
 
 } // namespace
 
-DataSet load_gdal_raster(const std::string& path, const std::string& color_path, int max_direct_size) {
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path, int max_direct_size,
+                         std::size_t imagery_bytes) {
     gdal::Dataset src = gdal::open_raster(path);
     GDALDriverH driver = GDALGetDatasetDriver(src.get());
     const std::string driver_name = driver ? GDALGetDriverShortName(driver) : "?";
-    check_declared_size(src.get(), path, driver_name);
+    check_declared_size(src.get(), path, kMaxSide);
     try {
-        return load_checked(src.get(), path, driver_name, color_path, max_direct_size);
+        return load_checked(src.get(), path, driver_name, color_path, max_direct_size, imagery_bytes);
     } catch (const std::bad_alloc&) {
         // Sizes were checked against the machine's memory, not against a
         // process limit (ulimit -v) or what other programs hold.
@@ -655,8 +626,8 @@ TerrainDescription survey_gdal_raster(const std::string& path, const std::string
     info.source = path;
     info.kind = "gdal";
     info.driver = driver ? GDALGetDriverShortName(driver) : "?";
-    check_declared_size(src.get(), path, info.driver);
-    warn_about_bands(src.get(), info);
+    check_declared_size(src.get(), path, kMaxSide);
+    append_band_warnings(src.get(), info.warnings);
     info.source_rows = GDALGetRasterYSize(src.get());
     info.source_cols = GDALGetRasterXSize(src.get());
     const MetricGrid m = metric_grid_of(src.get(), path);

@@ -7,6 +7,7 @@
 #include "core/DataSet.h"
 #include "io/TerrainReport.h"
 
+#include <cstddef>
 #include <string>
 
 namespace overflight {
@@ -17,10 +18,13 @@ namespace overflight {
 //  - a geographic CRS (degrees) is warped to the UTM zone of the raster's centre
 //    (same datum), bilinear, with square cells at GDAL's suggested native
 //    resolution; a projected raster with non-square or rotated cells is warped
-//    within its CRS to square cells of its finer pixel size;
+//    within its CRS to square cells of its finer pixel size (with GDAL's
+//    exact transformer at full resolution: io/GdalSource.h);
 //  - no-data samples (the band's no-data value, NaN, and cells outside the source
 //    after reprojection) are filled from valid neighbours by GDALFillNodata;
-//  - elevations map to 16 bits by choose_height_mapping (HeightMapping.h);
+//  - elevations map to 16 bits by choose_height_mapping (HeightMapping.h) over
+//    the range of the source's valid elevations, which the reprojected and
+//    filled ones lie within; the elevation ramp spans the same range;
 //  - hs is the pixel size in metres; a raster without a geotransform has hs = 1;
 //  - with `color_path` non-empty, that raster is resampled onto the DEM grid
 //    (warped by georeferencing when both have one, else stretched to the grid):
@@ -43,7 +47,10 @@ namespace overflight {
 // needs more memory than the machine has (all checked before reading any
 // sample) or than the process may use, an elevation or extent beyond
 // kWorldLimit (core/Terrain.h), or one that is entirely no-data.
-DataSet load_gdal_raster(const std::string& path, const std::string& color_path = "", int max_direct_size = 0);
+// A color raster finer than the DEM is kept at its own resolution
+// (io/ImageryRaster.h: load_imagery), read decimated beyond `imagery_bytes`.
+DataSet load_gdal_raster(const std::string& path, const std::string& color_path = "", int max_direct_size = 0,
+                         std::size_t imagery_bytes = std::size_t(4) << 30);
 
 // What `overflight info` reports of the raster load_gdal_raster would load at
 // full resolution, in about a second whatever its size: size, grid after

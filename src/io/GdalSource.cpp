@@ -1,12 +1,70 @@
 #include "io/GdalSource.h"
 
+#include "core/Error.h"
+#include "io/UsgsDemHeader.h"
+
 #include <cpl_conv.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 namespace overflight {
+
+std::string usgs_record_a_text(const std::string& path) {
+    std::string head(1024, ' ');
+    if (FILE* f = std::fopen(path.c_str(), "rb")) {
+        head.resize(std::fread(head.data(), 1, head.size(), f));
+        std::fclose(f);
+    }
+    return head;
+}
+
+void check_declared_size(GDALDatasetH ds, const std::string& path, int max_side) {
+    GDALDriverH driver = GDALGetDatasetDriver(ds);
+    if (driver && std::string(GDALGetDriverShortName(driver)) == "USGSDEM") {
+        // GDAL sizes the grid by Record A's profile count; each profile needs a
+        // Record B in the file (USGS DEM Standards Part 2).
+        const long profiles = usgs_profile_count(usgs_record_a_text(path));
+        std::error_code ec;
+        const auto bytes = std::filesystem::file_size(path, ec);
+        if (max_side > 0 && profiles > max_side)
+            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles, more than " +
+                                  std::to_string(max_side));
+        if (!ec && profiles > 0 && (long long)bytes < usgs_minimum_file_size(profiles))
+            throw Error(path, "Record A declares " + std::to_string(profiles) + " profiles but the file holds only " +
+                                  std::to_string(bytes) + " bytes (at least " +
+                                  std::to_string(kUsgsRecordBHeaderBytes) + " per profile)");
+    }
+    const int cols = GDALGetRasterXSize(ds), rows = GDALGetRasterYSize(ds);
+    if (rows < 2 || cols < 2)
+        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) +
+                              ", a terrain needs at least 2x2 samples");
+    if (max_side > 0 && (rows > max_side || cols > max_side))
+        throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) + ", more than " +
+                              std::to_string(max_side) + " samples per side");
+}
+
+void append_band_warnings(GDALDatasetH ds, std::vector<std::string>& warnings) {
+    const int bands = GDALGetRasterCount(ds);
+    GDALRasterBandH first = GDALGetRasterBand(ds, 1);
+    const GDALColorInterp ci = GDALGetRasterColorInterpretation(first);
+    std::string interpretation = GDALGetColorInterpretationName(ci);
+    for (char& c : interpretation) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (GDALGetRasterColorTable(first) != nullptr)
+        warnings.push_back("band 1 is a palette image: its color indices are taken as heights");
+    else if (bands > 1)
+        warnings.push_back("has " + std::to_string(bands) + " bands; band 1 (" + interpretation + ") is taken as heights" +
+                           (ci == GCI_RedBand ? " (an RGB image? give heights as TERRAIN and the image as --color)" : ""));
+}
+
+std::vector<std::string> metric_warp_options() {
+    char nodata[32];
+    std::snprintf(nodata, sizeof nodata, "%.9g", double(kNoData));
+    return {"-r", "bilinear", "-dstnodata", nodata, "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA", "-et", "0"};
+}
 
 double metres_per_unit(const std::string& unit, std::string& name) {
     std::string u = unit;

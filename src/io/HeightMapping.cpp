@@ -27,4 +27,10 @@ void quantise_heights(const std::vector<float>& elevations, HeightMapping mappin
     }
 }
 
+std::pair<float, float> mapped_range(HeightMapping mapping, float lo, float hi) {
+    std::vector<std::uint16_t> ends;
+    quantise_heights({lo, hi}, mapping, ends);
+    return {mapping.v_scale * float(ends[0]) + mapping.y_offset, mapping.v_scale * float(ends[1]) + mapping.y_offset};
+}
+
 } // namespace overflight

@@ -3,8 +3,10 @@
 #include "io/HovercraftDataSet.h"
 
 #include "core/Error.h"
+#include "core/ImageryFallback.h"
 #include "core/Shading.h"
 #include "io/Files.h"
+#include "io/ImageryRaster.h"
 #include "io/MapFile.h"
 #include "io/Pnm.h"
 
@@ -127,11 +129,18 @@ DataSet load_hovercraft(const std::string& dir) {
         } else if (color.width == cols && color.height == rows) {
             data.terrain.colors() = std::move(color.pixels);
             info.color_source = color_path + " (one pixel per sample)";
+        } else if (color.width >= cols && color.height >= rows) {
+            // Finer than the grid: imagery at its own resolution over the grid squares.
+            auto imagery = imagery_over_cells(color, t.width(), t.depth());
+            colors_from_imagery(*imagery, data.terrain);
+            data.terrain.set_imagery(std::move(imagery));
+            info.color_source = color_path + " (imagery at its own " + std::to_string(color.width) + "x" +
+                                std::to_string(color.height) + " over the grid cells)";
         } else {
             throw Error(color_path, "size " + std::to_string(color.width) + "x" + std::to_string(color.height) +
                                         " matches neither the grid cells (" + std::to_string(cols - 1) + "x" +
                                         std::to_string(rows - 1) + ") nor the samples (" + std::to_string(cols) + "x" +
-                                        std::to_string(rows) + ") of hf.pgm");
+                                        std::to_string(rows) + ") of hf.pgm, nor is it larger than both");
         }
     } else {
         shade_by_elevation(data.terrain, data.terrain.min_height());

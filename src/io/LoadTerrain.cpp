@@ -43,13 +43,15 @@ DataSet load_terrain(const std::string& arg, const LoadOptions& options) {
         // Some GDAL formats are directories (ESRI binary grids); anything else
         // is reported as what the user most likely meant: a data set without map.
         try {
-            return load_gdal_raster(arg, options.color_path, options.max_direct_size);
+            return load_gdal_raster(arg, options.color_path, options.max_direct_size,
+                                    std::size_t(options.imagery_memory_mib) << 20);
         } catch (const Error& e) {
             if (e.subject() != arg) throw;
             throw Error(arg, "directory without a `map` file (not a hovercraft data set)");
         }
     }
-    return load_gdal_raster(arg, options.color_path, options.max_direct_size);
+    return load_gdal_raster(arg, options.color_path, options.max_direct_size,
+                            std::size_t(options.imagery_memory_mib) << 20);
 }
 
 TerrainDescription describe_terrain(const std::string& arg, const LoadOptions& options, long long exact_samples) {

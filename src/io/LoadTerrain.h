@@ -15,6 +15,9 @@ struct LoadOptions {
     // `--max-direct-size N`: a GDAL raster with more samples on a side is read
     // decimated to at most N (load_gdal_raster); 0: always full resolution.
     int max_direct_size = 0;
+    // `--imagery-memory-mib N`: imagery finer than the DEM beyond N MiB (with
+    // its mips) is read decimated (load_gdal_raster).
+    int imagery_memory_mib = 4096;
 };
 
 // "demo" -> make_demo_island(demo_size); a directory holding `map` ->

@@ -1,6 +1,8 @@
 // Based on: DESIGN sec. 4 ("info reports what was done") and sec. 6 (`overflight info [--json]`).
 #include "io/TerrainReport.h"
 
+#include "core/ImageryPyramid.h"
+
 #include <nlohmann/json.hpp>
 
 #include <charconv>
@@ -54,6 +56,12 @@ nlohmann::ordered_json report(const TerrainDescription& d) {
     j["extent_x"] = tidy(d.extent_x);
     j["extent_z"] = tidy(d.extent_z);
     j["color_source"] = info.color_source;
+    const bool imagery = d.imagery_cols > 0;
+    j["imagery_size"] = imagery ? nlohmann::ordered_json(std::to_string(d.imagery_cols) + "x" +
+                                                         std::to_string(d.imagery_rows))
+                                : nullptr;
+    j["imagery_resolution"] = imagery ? nlohmann::ordered_json(tidy(float(d.imagery_texel))) : nullptr;
+    j["imagery_coverage"] = imagery ? nlohmann::ordered_json(tidy(float(d.imagery_coverage))) : nullptr;
     j["objects"] = d.objects;
     j["lines"] = d.lines;
     if (d.start.given)
@@ -95,6 +103,12 @@ TerrainDescription describe(const DataSet& data) {
     d.objects = data.scene.objects.size();
     d.lines = data.scene.lines.size();
     d.start = data.start;
+    if (const ImageryPyramid* p = t.imagery()) {
+        d.imagery_cols = p->level(0).width;
+        d.imagery_rows = p->level(0).height;
+        d.imagery_texel = p->texel_size(0);
+        d.imagery_coverage = p->coverage();
+    }
     return d;
 }
 
@@ -104,6 +118,7 @@ std::string terrain_report_text(const TerrainDescription& d) {
     std::ostringstream out;
     for (const auto& [key, value] : j.items()) {
         if (key == "metadata" || key == "warnings" || key == "approximate") continue;
+        if (value.is_null() && key.rfind("imagery_", 0) == 0) continue; // no imagery finer than the DEM
         const std::string s = plain(value);
         if (s.empty()) continue;
         out << key << ": " << s;

@@ -99,6 +99,11 @@ std::vector<std::uint8_t> encode_geotiff(const std::string& path, const RasterSp
     } owner{mem};
     char** co = CSLSetNameValue(nullptr, "COMPRESS", "DEFLATE");
     co = CSLSetNameValue(co, "PREDICTOR", spec.type == GDT_Float32 ? "3" : "2");
+    // Encoding is most of a tiling run. Level 2 (GDAL's default is 6) costs
+    // about 40 % less CPU for about 8 % larger files; any DEFLATE reader
+    // reads every level, so folders written at 6 stay readable and resumable
+    // (a re-run compares samples, not bytes).
+    co = CSLSetNameValue(co, "ZLEVEL", "2");
     gdal::Dataset ds(GDALCreate(GDALGetDriverByName("GTiff"), mem.c_str(), spec.cols, spec.rows, spec.bands, spec.type, co));
     CSLDestroy(co);
     if (!ds) throw Error(path, "cannot encode: " + gdal::last_error("GTiff"));

@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <limits>
 #include <mutex>
+#include <tuple>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -33,10 +34,6 @@ namespace overflight {
 
 namespace {
 
-// No-data in our float windows, as the loader marks it (io/GdalRaster.cpp).
-constexpr float kNoData = -1.0e30f;
-// The loader's first no-data search distance (io/GdalRaster.cpp fill_nodata).
-constexpr int kFillDistance = 256;
 
 std::string number(double v, int digits) {
     char buf[40];
@@ -157,8 +154,9 @@ void plan_grid(Plan& plan, GDALDatasetH src) {
         hs = px;
     }
     if (!plan.warp.empty()) {
-        plan.warp.insert(plan.warp.end(), {"-of", "VRT", "-r", "bilinear", "-dstnodata", number(kNoData, 9), "-ot",
-                                           "Float32", "-wo", "INIT_DEST=NO_DATA"});
+        const std::vector<std::string> common = metric_warp_options();
+        plan.warp.insert(plan.warp.end(), {"-of", "VRT"});
+        plan.warp.insert(plan.warp.end(), common.begin(), common.end());
         Reader r;
         open_reader(r, plan, true);
         GDALDatasetH w = r.warped.get();
@@ -239,10 +237,7 @@ void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::functi
     plan.hi = all.hi;
     plan.integral = all.integral && plan.warp.empty();
     plan.mapping = choose_height_mapping(plan.lo, plan.hi, plan.integral);
-    std::vector<std::uint16_t> ends;
-    quantise_heights({plan.lo, plan.hi}, plan.mapping, ends);
-    plan.world_lo = plan.mapping.v_scale * float(ends[0]) + plan.mapping.y_offset;
-    plan.world_hi = plan.mapping.v_scale * float(ends[1]) + plan.mapping.y_offset;
+    std::tie(plan.world_lo, plan.world_hi) = mapped_range(plan.mapping, plan.lo, plan.hi);
     std::uint64_t h = kFnvBasis;
     const double header[] = {double(plan.rows), double(plan.cols), plan.h_scale, plan.mapping.v_scale,
                              plan.mapping.y_offset, plan.gt[0], plan.gt[1], plan.gt[2], plan.gt[3], plan.gt[4], plan.gt[5]};
@@ -272,7 +267,7 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int 
     if (std::find(z.begin(), z.end(), kNoData) != z.end()) {
         // The fill of a sample reads only the samples within the search
         // distance, so this wider window fills the core as the whole raster would.
-        const int d = std::min(kFillDistance, std::max(plan.rows, plan.cols));
+        const int d = std::min(kFillSearchDistance, std::max(plan.rows, plan.cols));
         const int br0 = std::max(0, r0 - d), br1 = std::min(plan.rows - 1, r1 + d);
         const int bc0 = std::max(0, c0 - d), bc1 = std::min(plan.cols - 1, c1 + d);
         const int bh = br1 - br0 + 1, bw = bc1 - bc0 + 1;
@@ -288,7 +283,8 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int 
             throw Error(plan.path, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
         for (float& v : z) {
             // Beyond the search distance: the lowest elevation, never a spike
-            // (the loader searches the whole raster there first).
+            // (the loader's too for a void reaching the raster's border; it
+            // searches the whole raster for an enclosed one).
             if (v == kNoData) v = plan.lo;
             if (plan.integral) v = std::round(v);
         }
@@ -304,7 +300,7 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int 
 // Peak bytes of one tile in flight: the widened float window and GDAL's copy
 // of it for the fill, the tile's samples, colors, d2, encoded files.
 std::int64_t bytes_per_tile(const Plan& plan, int tile_size) {
-    const std::int64_t side = std::min<std::int64_t>(tile_size + 2 + 2 * kFillDistance, std::max(plan.rows, plan.cols));
+    const std::int64_t side = std::min<std::int64_t>(tile_size + 2 + 2 * kFillSearchDistance, std::max(plan.rows, plan.cols));
     return 12 * side * side + 48 * std::int64_t(tile_size) * tile_size + (16 << 20);
 }
 
@@ -349,10 +345,12 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
     plan.path = path;
     {
         gdal::Dataset src = gdal::open_raster(path);
-        const int rows = GDALGetRasterYSize(src.get()), cols = GDALGetRasterXSize(src.get());
-        if (rows < 2 || cols < 2)
-            throw Error(path, "raster is " + std::to_string(cols) + "x" + std::to_string(rows) +
-                                  ", a terrain needs at least 2x2 samples");
+        // The loader's checks and warnings; no side limit but the tile grid's (grid_of).
+        check_declared_size(src.get(), path, 0);
+        std::vector<std::string> warnings;
+        append_band_warnings(src.get(), warnings);
+        if (options.warn)
+            for (const std::string& w : warnings) options.warn(w);
         GDALRasterBandH band = GDALGetRasterBand(src.get(), 1);
         int has = 0;
         plan.band.nodata = GDALGetRasterNoDataValue(band, &has);

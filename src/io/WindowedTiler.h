@@ -20,17 +20,17 @@
 //     every tile, apron, d2, overview file byte-identical;
 //   - with no-data within 256 samples of valid data: the same (the fill of a
 //     sample depends only on the samples within its search distance);
-//     voids wider than that, which the loader fills by a second search over
-//     the whole raster, get the lowest elevation of the source here (a
-//     window cannot see the whole raster, and every tile must give a shared
-//     sample the same value);
+//     beyond it, samples get the lowest elevation of the source, as the
+//     loader gives those of voids reaching the raster's border (the wedges
+//     outside a reprojected source); the loader searches the whole raster
+//     for a void enclosed by data wider than that, which a window cannot see
+//     (every tile must give a shared sample the same value);
 //   - a geographic raster, or one with rotated or non-square cells, is read
-//     through a warped VRT (GDALWarp to VRT, the loader's options) whose
-//     blocks are warped on a fixed grid, so a sample's value does not depend
-//     on which tile reads it; the height mapping spans the source's range
-//     (the warped values lie within it) rather than the warped one. Heights
-//     differ from the in-memory warp by GDAL's approximate transformer
-//     (0.125 pixel) on another chunking and by that mapping.
+//     through a warped VRT (GDALWarp to VRT, the loader's options with the
+//     exact transformer, io/GdalSource.h metric_warp_options), so a sample's
+//     value does not depend on which tile reads it; the height mapping and
+//     the colour ramp span the source's range, as the loader's do: the same
+//     tiles, byte for byte;
 //   - index.json's checksum is FNV-1a 64 of the source's elevations in
 //     metres (row by row) and the plan, not of the loaded terrain: it is
 //     known before any tile is cut, as a run in parts needs it.
@@ -38,6 +38,7 @@
 #include "io/TileParts.h"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace overflight {
@@ -48,6 +49,9 @@ struct WindowedTileOptions {
     // statistics; not the index of a grid of millions of tiles).
     std::int64_t memory_bytes = std::int64_t(1) << 30;
     TilePart part; // the share of the tile rows to write (io/TileParts.h)
+    // Called, before the source is read, with each warning the loader would
+    // give (TerrainInfo::warnings, e.g. only band 1 of several is read).
+    std::function<void(const std::string& warning)> warn;
 };
 
 // Tiles the raster at `path` into `dir`, part options.part of the run; the
@@ -57,7 +61,9 @@ struct WindowedTileOptions {
 // kMaxTiledSide), Error("--memory-mib", ...) when the bound cannot hold one
 // tile's window, Error(dir, "interrupted") when options.tile.on_tile
 // returned false (it is also called with 0 tiles done while the source is
-// surveyed), and the write errors of write_tile_directory.
+// surveyed), and the write errors of write_tile_directory. The checks made
+// before reading (a USGS DEM's Record A against the file's size, at least
+// 2x2 samples) and the warnings are the loader's (io/GdalSource.h).
 TileWriteReport tile_raster_in_windows(const std::string& path, const std::string& dir,
                                        const WindowedTileOptions& options);
 

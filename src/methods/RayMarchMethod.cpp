@@ -18,7 +18,12 @@ namespace {
 class RayMarchMethod final : public TerrainMethod {
 public:
     explicit RayMarchMethod(const MethodContext& c)
-        : marcher_(c.terrain, env_), lighting_(c.terrain), water_(c.terrain), surface_(c.settings.raycast.surface) {}
+        : marcher_(c.terrain, env_),
+          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors),
+          water_(c.terrain),
+          surface_(c.settings.raycast.surface) {
+        marcher_.set_imagery(c.terrain.imagery());
+    }
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
@@ -31,7 +36,7 @@ public:
         stats.rays = (long long)view.camera.width * view.camera.height;
         if (view.environment.water) {
             const auto tw = std::chrono::steady_clock::now();
-            water_.set_colors(colors);
+            water_.set_colors(colors, view.environment);
             water_.apply(view.camera, view.environment, surface_, color_, depth_);
             stats.add_step_since("water", tw);
         }

@@ -18,7 +18,10 @@ namespace {
 class VoxelLiteralMethod final : public TerrainMethod {
 public:
     explicit VoxelLiteralMethod(const MethodContext& c)
-        : terrain_(c.terrain), lighting_(c.terrain), water_(c.terrain), options_(c.settings.raycast) {
+        : terrain_(c.terrain),
+          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors),
+          water_(c.terrain),
+          options_(c.settings.raycast) {
         if (options_.lod) throw Error("distance LOD", "voxel-literal has none (it is Algorithm 1 as printed)");
     }
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
@@ -30,12 +33,12 @@ public:
         if (lighting_.version() != before) stats.add_step_since("light", t0);
         RaycastStats s;
         render_floating_horizon_literal(terrain_, view.environment, view.camera, options_.surface, color_, depth_, &s,
-                                        colors);
+                                        colors, terrain_.imagery());
         stats.steps.push_back({"raycast", s.ms_total});
         stats.raycast = s;
         if (view.environment.water) {
             const auto tw = std::chrono::steady_clock::now();
-            water_.set_colors(colors);
+            water_.set_colors(colors, view.environment);
             water_.apply(view.camera, view.environment, options_.surface, color_, depth_);
             stats.add_step_since("water", tw);
         }

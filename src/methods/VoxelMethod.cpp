@@ -19,7 +19,13 @@ namespace {
 class VoxelMethod final : public TerrainMethod {
 public:
     explicit VoxelMethod(const MethodContext& c)
-        : caster_(c.terrain), lighting_(c.terrain), water_(c.terrain), options_(c.settings.raycast) {}
+        : caster_(c.terrain),
+          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors),
+          water_(c.terrain),
+          options_(c.settings.raycast) {
+        // Imagery finer than the samples: the cast paints light, the imagery the albedo.
+        caster_.set_imagery(c.terrain.imagery());
+    }
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
@@ -36,7 +42,7 @@ public:
         stats.raycast = s;
         if (view.environment.water) {
             const auto tw = std::chrono::steady_clock::now();
-            water_.set_colors(colors);
+            water_.set_colors(colors, view.environment);
             water_.apply(view.camera, view.environment, options_.surface, color_, depth_);
             stats.add_step_since("water", tw);
         }

@@ -13,6 +13,8 @@ FloatingHorizon::~FloatingHorizon() = default;
 
 void FloatingHorizon::set_colors(const std::vector<Rgb8>* colors) { state_->terrain.set_colors(colors); }
 
+void FloatingHorizon::set_imagery(const ImageryPyramid* imagery) { state_->imagery.bind(imagery); }
+
 void FloatingHorizon::render(const Camera& camera, const Environment& env, const RaycastOptions& options,
                              ColorImage& color, DepthImage& depth, RaycastStats* stats) {
     const auto t0 = Clock::now();

@@ -80,6 +80,12 @@ public:
     // terrain's own colors; null: the terrain's. Repacks them (linear in the
     // samples), so call it only when they change.
     void set_colors(const std::vector<Rgb8>* colors);
+    // Imagery finer than the samples (null: none, the default): from the next
+    // render on, the painted colors are taken as each sample's light (128 is
+    // 1, core/SunLight.h LightOutput::Light) and multiplied by the imagery's
+    // texel at the painted pixel's ground point on the mip level of its
+    // footprint (ImageryTexels.h), for every camera model.
+    void set_imagery(const ImageryPyramid* imagery);
 
 private:
     std::unique_ptr<FloatingHorizonState> state_;

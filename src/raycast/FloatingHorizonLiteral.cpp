@@ -5,9 +5,11 @@
 #include "core/Error.h"
 #include "raycast/Atmosphere.h"
 #include "raycast/DepthVector.h"
+#include "raycast/ImageryTexels.h"
 
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -16,7 +18,7 @@ namespace overflight {
 
 void render_floating_horizon_literal(const Terrain& terrain, const Environment& env, const Camera& camera,
                                      SurfaceModel surface, ColorImage& color, DepthImage& depth, RaycastStats* stats,
-                                     const std::vector<Rgb8>* colors) {
+                                     const std::vector<Rgb8>* colors, const ImageryPyramid* imagery) {
     const auto t0 = std::chrono::steady_clock::now();
     camera.validate();
     if (camera.projection != Projection::Shear)
@@ -35,6 +37,8 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
     const double pitch = H * 0.5 - 0.5 - dpk * std::tan(glm::radians(camera.pitch));
     long long visited = 0, painted = 0;
     const AerialFrame air = aerial_frame(env, camera.eye.y);
+    const double texel = imagery ? imagery->texel_size(0) : 1.0;
+    const int levels = imagery ? imagery->levels() : 1;
 
     for (int col = 0; col < W; ++col) {
         const double a = camera.u_of(col) / dpk;
@@ -61,8 +65,19 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
                         const int row = H - 1 - j;
                         // Fog at the eye distance of this pixel's ray at this slice.
                         const double len = std::sqrt(1.0 + a * a + m * m);
-                        color.at(col, row) = env.atmosphere ? aerial_rgb(air, c, dist * (F + a * R + glm::dvec3(0, -m, 0)))
-                                                            : apply_fog(env, c, fog_factor(env, dist * len)); // line 11
+                        Rgb8 lit = c;
+                        if (imagery) {
+                            // The light times the imagery where this pixel's ray meets the
+                            // sample's height, within the cell it stands for (ImageryTexels.h).
+                            const double d = m > 0 ? std::clamp((camera.eye.y - h) / m, dist - hs, dist) : dist;
+                            // The longer side of the pixel's trace on level ground.
+                            const double footprint = dist / (dpk * (m > 0 ? std::max(m, 1.0 / 1024.0) : 1.0));
+                            const int level = mip_level_for_footprint(footprint, texel, levels);
+                            lit = modulate_light(c, imagery->nearest(camera.eye.x + d * (F.x + a * R.x),
+                                                                     camera.eye.z + d * (F.z + a * R.z), level));
+                        }
+                        color.at(col, row) = env.atmosphere ? aerial_rgb(air, lit, dist * (F + a * R + glm::dvec3(0, -m, 0)))
+                                                            : apply_fog(env, lit, fog_factor(env, dist * len)); // line 11
                         depth.at(col, row) = Depth[std::size_t(i)];                          // line 11A
                         ++painted;
                         j += 1;          // line 12

@@ -17,6 +17,7 @@
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
+#include "core/ImageryPyramid.h"
 #include "core/Terrain.h"
 #include "raycast/RaycastOptions.h"
 
@@ -25,10 +26,14 @@
 namespace overflight {
 
 // Throws Error("projection", ...) for a tilt camera, Error("camera", ...) for a bad one.
+// With `imagery` (finer than the samples), the painted colors are each
+// sample's light (128 is 1) times the imagery's nearest texel at the slice's
+// ground point on the mip level of the pixel's footprint (ImageryTexels.h).
 // `colors` (one per sample, e.g. sun-lit: core/SunLight.h) are painted
 // instead of the terrain's own when given.
 void render_floating_horizon_literal(const Terrain& terrain, const Environment& env, const Camera& camera,
                                      SurfaceModel surface, ColorImage& color, DepthImage& depth,
-                                     RaycastStats* stats = nullptr, const std::vector<Rgb8>* colors = nullptr);
+                                     RaycastStats* stats = nullptr, const std::vector<Rgb8>* colors = nullptr,
+                                     const ImageryPyramid* imagery = nullptr);
 
 } // namespace overflight

@@ -20,6 +20,20 @@ namespace overflight {
 
 namespace {
 
+// Multiplies the light painted into a block by the imagery under each
+// painted pixel (ImageryTexels.h: drape_column); column i's plane runs along
+// F + a_i R, F and R horizontal for the shear camera.
+void apply_imagery(const FloatingHorizonState& s, const Camera& camera, int c0, const ShearBlock& blk,
+                   std::uint32_t* color, const std::uint32_t* slice) {
+    const glm::dvec3 F = camera.forward(), R = camera.right();
+    const DrapeFrame frame{&s.imagery, s.frame.slices.df.data(), s.frame.slices.df[0], s.frame.rows.m.data(),
+                           float(camera.eye.x), float(camera.eye.z)};
+    for (int i = 0; i < blk.n; ++i) {
+        const double a = s.frame.columns.a[std::size_t(c0 + i)];
+        drape_column(frame, float(F.x + a * R.x), float(F.z + a * R.z), color + i, slice + i, blk.jend[i], kShearBlock);
+    }
+}
+
 // Casts and resolves the blocks of kShearBlock columns in parallel: a block
 // is cast into a per-thread scratch that stays in L2 and resolved from there
 // into runs of kShearBlock pixels of image rows (ShearResolve).
@@ -68,6 +82,7 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
             blk.jend[i] = i < blk.n ? sc.jend[std::size_t(i)] : 0;
             blk.sun_dot[i] = float(f_sun + a * r_sun);
         }
+        if (s.imagery.bound()) apply_imagery(s, camera, c0, blk, sc.color.data(), sc.slice.data());
         const auto tr = Clock::now();
         resolve_shear_block(tables, blk, H, sc.color.data(), sc.slice.data(), color.pixels.data() + c0,
                             depth.pixels.data() + c0, std::size_t(W));
@@ -99,6 +114,10 @@ void cast_shear(FloatingHorizonState& s, const Camera& camera, const Environment
     shear_rows(camera, f.rows);
     slice_guesses(f.slopes, f.rows, f.guesses);
     s.fog.build(env.fog_density, shear_fog_reach(camera, f.rows));
+    if (s.imagery.bound()) {
+        s.imagery.prepare_slices(f.slices.df.data(), int(f.slices.df.size()), camera.focal_px());
+        s.imagery.prepare_rows(f.rows.m.data(), f.rows.count);
+    }
     stats.ms_setup = ms_since(t0);
     stats.columns = camera.width;
     cast_and_resolve_blocks(s, camera, options, color, depth, stats);

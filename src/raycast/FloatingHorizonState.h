@@ -9,6 +9,7 @@
 #include "raycast/Atmosphere.h"
 #include "raycast/FloatingHorizonCast.h"
 #include "raycast/FloatingHorizonTables.h"
+#include "raycast/ImageryTexels.h"
 #include "raycast/RaycastOptions.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -39,6 +40,10 @@ struct FloatingHorizonState {
     bool air_on = false;
     AerialTables air;
     glm::dvec3 sun{0.0, 1.0, 0.0};
+    // Imagery finer than the samples (FloatingHorizon::set_imagery): the
+    // cast paints light, the imagery's texel at each painted pixel's ground
+    // point multiplies it.
+    ImageryTexels imagery;
 
     // A terrain hit's packed color seen from the eye (distance, height above
     // the eye, cosine to the sun of the ray): through the air or fogged.

@@ -11,6 +11,10 @@ void prepare_tilt(FloatingHorizonState& s, const Camera& camera, const Environme
     clip_columns(f.view, s.terrain.terrain, f.slices.d, f.columns);
     tilt_cast_rows(tr, f.rows);
     s.fog.build(env.fog_density, tilt_fog_reach(camera));
+    if (s.imagery.bound()) {
+        s.imagery.prepare_slices(f.slices.df.data(), int(f.slices.df.size()), fp_h);
+        s.imagery.prepare_rows(f.rows.m.data(), f.rows.count);
+    }
     const std::size_t columns = f.columns.a.size();
     s.tilt_color.resize(columns * std::size_t(f.rows.count));
     s.tilt_slice.resize(s.tilt_color.size());

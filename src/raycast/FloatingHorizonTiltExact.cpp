@@ -35,6 +35,18 @@ void cast_tilt_exact(FloatingHorizonState& s, const Camera& camera, const Enviro
         visited += cast_columns(s.terrain, f, options, c0, c1, s.tilt_color.data() + off, s.tilt_slice.data() + off,
                                 s.tilt_jend.data() + c0, std::ptrdiff_t(cstride), 1);
     });
+    if (s.imagery.bound()) {
+        // The light of each cast pixel times the imagery under it (ImageryTexels.h); plane cs runs along F + a R.
+        const glm::dvec3 F = camera.forward(), R = camera.right();
+        const DrapeFrame frame{&s.imagery, f.slices.df.data(), f.slices.df[0], f.rows.m.data(), float(camera.eye.x),
+                               float(camera.eye.z)};
+        tbb::parallel_for(0, ws, [&](int cs) {
+            const double a = f.columns.a[std::size_t(cs)];
+            const std::size_t off = std::size_t(cs) * cstride;
+            drape_column(frame, float(F.x + a * R.x), float(F.z + a * R.z), s.tilt_color.data() + off,
+                         s.tilt_slice.data() + off, s.tilt_jend[std::size_t(cs)], 1);
+        });
+    }
     stats.samples_visited = visited;
     stats.ms_cast = ms_since(t0);
 

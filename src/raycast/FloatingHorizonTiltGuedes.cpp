@@ -60,7 +60,9 @@ int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int 
         const std::size_t ci = std::size_t(int(y + 0.5)) * std::size_t(t.cols()) + std::size_t(int(x + 0.5));
         const double h = t.v_scale() * double(t.heights()[ci]) + t.y_offset();
         if (h > z) {
-            const std::uint32_t col = s.terrain.colors[ci];
+            std::uint32_t col = s.terrain.colors[ci];
+            if (s.imagery.bound()) // the light times the imagery at the ray's ground point
+                col = modulate_light(col, s.imagery.at(float(x * hs), float(y * hs), s.imagery.level(k, row)));
             do {
                 const double dist = std::sqrt(v * v * lat * lat + (z - ey) * (z - ey));
                 out_c[row] = s.hit_color(col, float(dist), float(z - ey), float((v * lat_sun + (z - ey) * s.sun.y) / dist));

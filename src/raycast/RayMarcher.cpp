@@ -4,6 +4,7 @@
 
 #include "raycast/Atmosphere.h"
 #include "raycast/CellTraversal.h"
+#include "raycast/ImageryTexels.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -143,8 +144,19 @@ void RayMarcher::shade_pixel(const Camera& camera, const Frame& frame, SurfaceMo
     }
     const glm::dvec4 clip = frame.view_projection * glm::dvec4(hit.point, 1.0);
     depth = float(std::clamp((clip.z / clip.w + 1.0) * 0.5, 0.0, 1.0));
-    color = env_.atmosphere ? aerial_rgb(frame.air, hit.surface, hit.point - camera.eye)
-                            : apply_fog(env_, hit.surface, fog_factor(env_, glm::length(hit.point - camera.eye)));
+    Rgb8 surface_color = hit.surface;
+    if (imagery_) {
+        // The longer side of the pixel's trace on level ground: its view depth
+        // over the focal length, over the ray's slope when it looks down.
+        const glm::dvec3 ray = b - a;
+        const double slope = -ray.y / std::max(std::hypot(ray.x, ray.z), 1e-12);
+        const double view_depth = glm::dot(hit.point - camera.eye, camera.view_axis());
+        const double footprint = view_depth / (camera.focal_px() * (slope > 0 ? std::max(slope, 1.0 / 1024.0) : 1.0));
+        const int level = mip_level_for_footprint(footprint, imagery_->texel_size(0), imagery_->levels());
+        surface_color = modulate_light(surface_color, imagery_->nearest(hit.point.x, hit.point.z, level));
+    }
+    color = env_.atmosphere ? aerial_rgb(frame.air, surface_color, hit.point - camera.eye)
+                            : apply_fog(env_, surface_color, fog_factor(env_, glm::length(hit.point - camera.eye)));
 }
 
 void RayMarcher::render(const Camera& camera, SurfaceModel surface, ColorImage& color, DepthImage& depth) const {

@@ -27,6 +27,8 @@
 #include "raycast/HeightPyramid.h"
 #include "raycast/RaycastOptions.h"
 
+#include "core/ImageryPyramid.h"
+
 #include <glm/mat4x4.hpp>
 
 #include <vector>
@@ -43,6 +45,11 @@ public:
     // The terrain's max-height pyramid (HeightPyramid of this terrain; must
     // outlive its use) for the `blocks` surface to skip with; null: every cell.
     void set_pyramid(const HeightPyramid* pyramid) { pyramid_ = pyramid; }
+    // Imagery finer than the samples (null: none): the painted colors are
+    // then each sample's light (128 is 1), times the imagery's nearest texel
+    // at the hit point on the mip level of the pixel's footprint
+    // (raycast/ImageryTexels.h).
+    void set_imagery(const ImageryPyramid* imagery) { imagery_ = imagery; }
 
     // Renders every pixel (parallel over rows). Resizes the images to the camera.
     void render(const Camera& camera, SurfaceModel surface, ColorImage& color, DepthImage& depth) const;
@@ -86,6 +93,7 @@ private:
     const Environment& env_;
     const std::vector<Rgb8>* colors_ = nullptr;
     const HeightPyramid* pyramid_ = nullptr;
+    const ImageryPyramid* imagery_ = nullptr;
 };
 
 } // namespace overflight

@@ -44,6 +44,10 @@ constexpr int kPyramidLevels = 31;
 
 WaterPass::WaterPass(const Terrain& terrain) : terrain_(terrain), pyramid_(terrain, kPyramidLevels) {}
 
+void WaterPass::set_colors(const std::vector<Rgb8>* colors, const Environment& env) {
+    colors_ = terrain_.imagery() ? albedo_lighting_.colors(env) : colors;
+}
+
 long long WaterPass::apply(const Camera& camera, const Environment& env, SurfaceModel surface, ColorImage& color,
                            DepthImage& depth) const {
     if (!env.water || !(camera.eye.y > double(env.water_level))) return 0;

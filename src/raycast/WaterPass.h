@@ -32,6 +32,7 @@
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
+#include "core/SunLight.h"
 #include "core/Terrain.h"
 #include "raycast/HeightPyramid.h"
 #include "raycast/RaycastOptions.h"
@@ -45,9 +46,12 @@ public:
     // Keeps a reference to terrain (it must outlive this object) and builds
     // its max-height pyramid (the terrain's heights must not change after).
     explicit WaterPass(const Terrain& terrain);
-    // The sample colors the reflections and the bottom show (e.g. sun-lit,
-    // as the caster paints; must outlive their use); null: the terrain's.
-    void set_colors(const std::vector<Rgb8>* colors) { colors_ = colors; }
+    // The sample colors the reflections and the bottom show: `colors` as the
+    // caster paints them (sun-lit; null: the terrain's; must outlive their
+    // use), except over imagery finer than the samples, whose caster paints
+    // light alone: then the terrain's own colors (the imagery averaged per
+    // sample) lit for `env` here.
+    void set_colors(const std::vector<Rgb8>* colors, const Environment& env);
     // Off: the mirrored rays march every cell (the plain reference march the
     // pyramid's skipping reproduces); on (the default): they skip.
     void set_skipping(bool on) { skipping_ = on; }
@@ -60,6 +64,7 @@ public:
 private:
     const Terrain& terrain_;
     const std::vector<Rgb8>* colors_ = nullptr;
+    TerrainLighting albedo_lighting_{terrain_}; // used over imagery only
     HeightPyramid pyramid_;
     bool skipping_ = true;
 };

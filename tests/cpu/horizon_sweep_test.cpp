@@ -11,6 +11,7 @@
 #include <glm/trigonometric.hpp>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -224,7 +225,7 @@ TEST(SunLight, LightColorsPerSample) {
     ShadowCeiling ceiling;
     sweep_shadow_ceiling(t, env.sun_dir, ceiling);
     std::vector<Rgb8> lit;
-    light_colors(t, env, &ceiling, lit);
+    light_colors(t, pack_normals(t), env, &ceiling, lit);
     int shadowed = 0;
     for (int r = 0; r < 9; ++r)
         for (int c = 0; c < 9; ++c) {
@@ -237,4 +238,45 @@ TEST(SunLight, LightColorsPerSample) {
             EXPECT_NEAR(got.b, std::min(255.0f, a.b * light.b), 1.0f) << r << "," << c;
         }
     EXPECT_GT(shadowed, 0); // the ridge in row 4 shadows the rows north of it
+}
+
+// The packed normals (core/PackedNormals.h) against Terrain::sample_normal
+// in full precision on the demo island, under five suns: every channel of
+// every sample within one color level, and the packing's own error within
+// half a step per component.
+TEST(SunLight, PackedNormalsWithinOneLevelOnTheDemo) {
+    DemoOptions o;
+    o.size = 513;
+    const DataSet ds = make_demo_island(o);
+    const Terrain& t = ds.terrain;
+    const PackedNormals normals = pack_normals(t);
+    float worst_component = 0.0f;
+    for (std::size_t i = 0; i < normals.packed.size(); i += 7) {
+        const glm::vec3 d = PackedNormals::unpack(normals.packed[i]) - t.sample_normal(int(i) / t.cols(), int(i) % t.cols());
+        worst_component = std::max({worst_component, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    }
+    EXPECT_LE(worst_component, 0.5f / PackedNormals::kScale + 1e-6f);
+    for (const auto& [az, el] : {std::pair{30.0, 8.0}, {135.0, 20.0}, {250.0, 12.0}, {300.0, 35.0}, {90.0, 60.0}}) {
+        Environment env = ds.environment;
+        env.sun_dir = sun_direction(az, el);
+        ShadowCeiling ceiling;
+        sweep_shadow_ceiling(t, env.sun_dir, ceiling);
+        std::vector<Rgb8> lit;
+        light_colors(t, normals, env, &ceiling, lit);
+        int worst = 0;
+        long long differ = 0;
+        for (int r = 0; r < t.rows(); ++r)
+            for (int c = 0; c < t.cols(); ++c) {
+                const glm::vec3 light = sample_light(env, t.sample_normal(r, c), !ceiling.shadowed(r, c, t.sample_height(r, c)));
+                const Rgb8 a = t.color(r, c), got = lit[t.index(r, c)];
+                const auto exact = [](std::uint8_t albedo, float l) { return int(std::clamp(albedo * l + 0.5f, 0.0f, 255.0f)); };
+                const int d = std::max({std::abs(got.r - exact(a.r, light.r)), std::abs(got.g - exact(a.g, light.g)),
+                                        std::abs(got.b - exact(a.b, light.b))});
+                worst = std::max(worst, d);
+                differ += d > 0;
+            }
+        std::printf("  sun %.0f/%.0f: packed normals differ by at most %d level on %.3f %% of the samples\n", az, el, worst,
+                    100.0 * double(differ) / double(t.rows() * t.cols()));
+        EXPECT_LE(worst, 1) << "sun " << az << "/" << el;
+    }
 }

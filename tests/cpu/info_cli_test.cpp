@@ -226,7 +226,8 @@ TEST(InfoCliErrors, PgmAbsurdSize) {
 TEST(InfoCliErrors, PpmSizeNotMatchingPgm) {
     ScratchDir dir;
     const std::string set = make_data_set(dir);
-    write_ppm(set + "/color.ppm", ColorImage(5, 4));
+    // Wider than the grid but shorter: neither per cell, per sample, nor imagery over the grid.
+    write_ppm(set + "/color.ppm", ColorImage(5, 1));
     expect_one_line_error("info '" + set + "'", set + "/color.ppm", "matches neither");
 }
 
@@ -234,6 +235,18 @@ TEST(InfoCliErrors, BadDemoSize) {
     const test::RunResult r = run_overflight("info demo --demo-size 100");
     EXPECT_NE(r.exit_code, 0);
     EXPECT_EQ(line_count(r.err), 1) << r.err;
+}
+
+TEST(InfoCli, AColorPpmLargerThanTheGridIsImageryAtItsOwnResolution) {
+    ScratchDir dir;
+    const std::string set = make_data_set(dir);
+    write_ppm(set + "/color.ppm", ColorImage(8, 8, Rgb8{10, 20, 30}));
+    const test::RunResult r = run_overflight("info '" + set + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // 8x8 texels over the 3x3 grid's 4x4 world units of cells: 0.5 per texel, all covered.
+    EXPECT_NE(r.out.find("imagery_size: 8x8\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("imagery_resolution: 0.5\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("imagery_coverage: 1.0\n"), std::string::npos) << r.out;
 }
 
 } // namespace

@@ -112,11 +112,22 @@ TEST(UntrustedRaster, UsgsDemRecordAClaimingTooManyProfiles) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "overflight: " + path + ": Record A declares 999999 profiles, more than 65537\n");
 
-    set_profile_count(path, " 60000");
-    r = info_in_half_a_gib(path);
+    // `tile` reads a raster in windows, with no side limit but its grid's:
+    // it refuses the file by its size.
+    r = test::run_overflight("tile '" + path + "' -o '" + (dir / "tiles") + "'");
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_EQ(r.err, "overflight: " + path + ": Record A declares 60000 profiles but the file holds only " +
+    EXPECT_EQ(r.err, "overflight: " + path + ": Record A declares 999999 profiles but the file holds only " +
                          std::to_string(bytes) + " bytes (at least 144 per profile)\n");
+
+    set_profile_count(path, " 60000");
+    for (const std::string command : {"info", "tile"}) {
+        r = command == "info" ? info_in_half_a_gib(path)
+                              : test::run_overflight("tile '" + path + "' -o '" + (dir / "tiles") + "'");
+        EXPECT_EQ(r.exit_code, 1);
+        EXPECT_EQ(r.err, "overflight: " + path + ": Record A declares 60000 profiles but the file holds only " +
+                             std::to_string(bytes) + " bytes (at least 144 per profile)\n");
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "tiles"));
 }
 
 TEST(UntrustedRaster, ElevationNearFloatMaxIsRefusedAtLoad) {
@@ -164,6 +175,10 @@ TEST(UntrustedRaster, RgbImageGivenAsDemIsReported) {
     r = run_overflight("sim '" + path + "' --steps 1");
     EXPECT_EQ(r.exit_code, 0);
     EXPECT_EQ(r.err, "overflight: " + path + ": warning: " + warning + "\n");
+    // `tile` reads it in windows, and warns the same.
+    r = run_overflight("tile '" + path + "' -o '" + (dir / "tiles") + "' --tile-size 33");
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.err, "overflight: " + path + ": warning: " + warning + "\n");
 
     // A one-band DEM says nothing.
     const std::string dem = dir / "dem.tif";
@@ -172,6 +187,9 @@ TEST(UntrustedRaster, RgbImageGivenAsDemIsReported) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(nlohmann::json::parse(r.out)["warnings"], nlohmann::json::array());
     r = run_overflight("sim '" + dem + "' --steps 1");
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    r = run_overflight("tile '" + dem + "' -o '" + (dir / "dem_tiles") + "' --tile-size 33");
+    EXPECT_EQ(r.exit_code, 0);
     EXPECT_TRUE(r.err.empty()) << r.err;
 }
 

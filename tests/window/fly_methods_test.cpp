@@ -15,6 +15,7 @@
 #include "io/HovercraftDataSet.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <map>
@@ -129,6 +130,13 @@ TEST(FlyMethods, TabShowsAllFourMethodsFromTheSameCamera) {
     for (const FlightFrame& f : rec.frames) {
         EXPECT_EQ(f.eye, rec.frames[0].eye);
         EXPECT_EQ(f.pitch, rec.frames[0].pitch);
+    }
+    // P also saved each frame's camera file.
+    for (int k = 0; k < 4; ++k) {
+        const auto cam = nlohmann::json::parse(test::read_file_text(dir / ("tab-00" + std::to_string(k) + ".json")));
+        EXPECT_EQ(cam["eye"], nlohmann::json::array({rec.frames[0].eye.x, rec.frames[0].eye.y, rec.frames[0].eye.z}));
+        EXPECT_EQ(cam["pitch"], rec.frames[0].pitch);
+        EXPECT_EQ(cam["width"], 320);
     }
 
     // Each method's frame has sky above the horizon and ground below it, and

@@ -1,0 +1,103 @@
+// Based on: Williams 1978 (shadow depth maps), applied in screen space to a
+// ray-cast image with depth. See ShadowScreenPass.h.
+#include "gl/ShadowScreenPass.h"
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+
+namespace overflight::gl {
+
+namespace {
+
+const char* const kPassVs = R"(
+void main() {
+    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+const char* const kPassFs = R"(
+layout(binding = 9) uniform sampler2D scene_depth; // texel (col - col0, row - row0), core rows
+layout(location = 0) uniform mat4 clip_to_eye;     // inverse of view_proj: clip -> world - eye
+layout(location = 4) uniform ivec2 rect_origin;    // col0, row0
+layout(location = 0, index = 0) out vec4 add;
+layout(location = 0, index = 1) out vec4 factor;
+float height_at(ivec2 i, ivec2 last) { return texelFetch(shadow_ceiling, clamp(i, ivec2(0), last), 0).g; }
+void main() {
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    int row = int(image.y) - 1 - px.y;
+    float d = texelFetch(scene_depth, ivec2(px.x, row) - rect_origin, 0).r;
+    if (d >= 1.0) discard;
+    vec4 ndc = vec4((vec2(px) + 0.5) / image.xy * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
+    vec4 e = clip_to_eye * ndc;
+    vec3 world = eye.xyz + e.xyz / e.w;
+    float visible = object_sun_visible(world);
+    if (visible >= 1.0) discard;
+    // The sample the ray caster painted: its normal (Terrain::sample_normal)
+    // and whether the terrain shadows it, from the ceiling texture.
+    ivec2 last = textureSize(shadow_ceiling, 0) - 1;
+    ivec2 i = clamp(ivec2(floor(world.xz * shadow.y + 0.5)), ivec2(0), last);
+    ivec2 x0 = ivec2(max(i.x - 1, 0), i.y), x1 = ivec2(min(i.x + 1, last.x), i.y);
+    ivec2 z0 = ivec2(i.x, max(i.y - 1, 0)), z1 = ivec2(i.x, min(i.y + 1, last.y));
+    float cell = 1.0 / shadow.y;
+    float dhdx = (height_at(x1, last) - height_at(x0, last)) / (cell * float(max(x1.x - x0.x, 1)));
+    float dhdz = (height_at(z1, last) - height_at(z0, last)) / (cell * float(max(z1.y - z0.y, 1)));
+    vec3 n = normalize(vec3(-dhdx, 1.0, -dhdz));
+    float lit = step(texelFetch(shadow_ceiling, i, 0).r, 0.0);
+    float sun = max(dot(n, sun_dir.xyz), 0.0) * lit;
+    vec3 before = ambient.rgb + sun_color.rgb * sun;
+    vec3 f = (ambient.rgb + sun_color.rgb * sun * visible) / max(before, vec3(1e-6));
+    add = vec4(fogged(vec3(0.0), world) * (1.0 - f), 0.0);
+    factor = vec4(f, 1.0);
+}
+)";
+
+} // namespace
+
+void ShadowScreenPass::draw(const DepthImage& depth, const Camera& camera, const PixelRect& rect) {
+    if (rect.empty()) return;
+    if (!program_) {
+        program_ = make_program("object-shadow-pass", kPassVs, kPassFs);
+        vao_ = make_vertex_array();
+    }
+    const int w = rect.col1 - rect.col0, h = rect.row1 - rect.row0;
+    if (!depth_ || w > width_ || h > height_) {
+        width_ = std::max(w, width_);
+        height_ = std::max(h, height_);
+        depth_ = make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(depth_.get(), 1, GL_R32F, width_, height_);
+        glTextureParameteri(depth_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(depth_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0); // from client memory, whatever pixel buffer an upload left bound
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, depth.width);
+    glTextureSubImage2D(depth_.get(), 0, 0, 0, w, h, GL_RED, GL_FLOAT,
+                        depth.pixels.data() + std::size_t(rect.row0) * std::size_t(depth.width) + std::size_t(rect.col0));
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+
+    // Eye-relative like FrameUniforms' view_proj, inverted in double.
+    const glm::mat4 clip_to_eye(glm::inverse(camera.projection_matrix() * camera.view_matrix() *
+                                             glm::translate(glm::dmat4(1.0), camera.eye)));
+    glUseProgram(program_.get());
+    glProgramUniformMatrix4fv(program_.get(), 0, 1, GL_FALSE, glm::value_ptr(clip_to_eye));
+    glProgramUniform2i(program_.get(), 4, rect.col0, rect.row0);
+    glBindTextureUnit(kUnit, depth_.get());
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(rect.col0, camera.height - rect.row1, w, h);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_SRC1_COLOR);
+    glBindVertexArray(vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_DEPTH_TEST);
+}
+
+} // namespace overflight::gl

@@ -1,0 +1,61 @@
+// See ImageryTexels.h.
+#include "raycast/ImageryTexels.h"
+
+#include <cmath>
+
+namespace overflight {
+
+void ImageryTexels::bind(const ImageryPyramid* pyramid) {
+    pyramid_ = pyramid;
+    levels_.clear();
+    if (!pyramid) return;
+    x0_ = float(pyramid->x0());
+    z0_ = float(pyramid->z0());
+    for (int l = 0; l < pyramid->levels(); ++l) {
+        const Image2D<Rgba8>& img = pyramid->level(l);
+        levels_.push_back(Level{img.pixels.data(), img.width, img.height, float(1.0 / pyramid->texel_x(l)),
+                                float(1.0 / pyramid->texel_z(l))});
+    }
+    last_level_ = pyramid->levels() - 1;
+}
+
+DrapeRun drape_run(const DrapeFrame& f, const std::uint32_t* slice, int j, int jend, std::ptrdiff_t row_stride) {
+    DrapeRun run;
+    run.k = slice[j * row_stride];
+    int top = j + 1;
+    while (top < jend && slice[top * row_stride] == run.k) ++top;
+    run.dk = f.slice_d[run.k];
+    run.d_prev = run.k > 0 ? f.slice_d[run.k - 1] : f.d_before_first;
+    run.m_top = f.row_m[top - 1];
+    return run;
+}
+
+void drape_column(const DrapeFrame& f, float dir_x, float dir_z, std::uint32_t* color, const std::uint32_t* slice,
+                  int jend, std::ptrdiff_t row_stride) {
+    DrapeRun run;
+    for (int j = 0; j < jend; ++j) {
+        // Slices only grow up a column: a new index is a new run.
+        if (slice[j * row_stride] != run.k) run = drape_run(f, slice, j, jend, row_stride);
+        std::uint32_t& c = color[j * row_stride];
+        c = drape_pixel(f, run, dir_x, dir_z, j, c);
+    }
+}
+
+void ImageryTexels::prepare_slices(const float* slice_d, int slices, double focal_px) {
+    slice_log2_.resize(std::size_t(std::max(slices, 0)));
+    if (!pyramid_) return;
+    const double scale = 1.0 / (focal_px * pyramid_->texel_size(0));
+    for (int k = 0; k < slices; ++k)
+        slice_log2_[std::size_t(k)] = float(std::log2(std::max(double(slice_d[k]) * scale, 1e-30)));
+}
+
+void ImageryTexels::prepare_rows(const float* row_m, int rows) {
+    row_log2_.resize(std::size_t(std::max(rows, 0)));
+    // Slopes flatter than this are taken as this: the footprint along a ray
+    // grazing the ground grows without bound, the pyramid's levels do not.
+    constexpr float kFlattest = 1.0f / 1024.0f;
+    for (int j = 0; j < rows; ++j)
+        row_log2_[std::size_t(j)] = row_m[j] < 0.0f ? -std::log2(std::max(-row_m[j], kFlattest)) : 0.0f;
+}
+
+} // namespace overflight

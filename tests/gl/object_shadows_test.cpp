@@ -1,0 +1,89 @@
+// The objects' cast shadows (gl/ObjectShadowMap, gl/ShadowScreenPass) on a
+// literal scene: a flat terrain and one box under a western sun at 45
+// degrees, whose shadow on the ground is worked out by hand, in a ray-cast
+// method (`voxel`: the screen-space pass over its image) and a mesh method
+// (`mesh`: shade()).
+#include "core/SunLight.h"
+#include "gl/HeadlessRenderer.h"
+#include "methods/MethodTable.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace overflight;
+
+namespace {
+
+// A flat 33x33 grid of cell 2 (X and Z in [0, 64]) at height 0, grey; a box
+// of 8 x 8 x 8 with its base centred at (24, 0, 32): X in [20, 28], Z in
+// [28, 36]. The sun in the west (azimuth 270) at 45 degrees: its rays drop
+// one unit per unit eastwards, so the box's top edge at X = 28, Y = 8 puts
+// its shadow on the ground over X in [28, 36], Z in [28, 36]; the flat
+// terrain casts none.
+DataSet box_scene() {
+    DataSet d;
+    d.terrain = Terrain(33, 33, 2.0f);
+    for (auto& c : d.terrain.colors()) c = {200, 200, 200};
+    d.environment.fog_density = 0;
+    d.environment.sun_dir = sun_direction(270.0, 45.0);
+    SceneObject box;
+    box.kind = ObjectKind::Box;
+    box.x = 24;
+    box.z = 32;
+    box.y = 0;
+    box.width = box.depth = box.height = 8;
+    box.color = {200, 40, 40};
+    d.scene.objects = {box};
+    return d;
+}
+
+ColorImage render(const DataSet& d, gl::HeadlessRenderer& r, const char* method, const Camera& cam, const Environment& env) {
+    const MethodSettings settings;
+    const std::unique_ptr<TerrainMethod> m = find_terrain_method(method)->create({d.terrain, settings, {}});
+    MethodStats stats;
+    ColorImage color;
+    r.render(m->produce({cam, env, std::nullopt}, stats), cam, env, {}, color, nullptr);
+    return color;
+}
+
+void expect_box_shadow(const char* method) {
+    const DataSet d = box_scene();
+    gl::HeadlessRenderer r(d.terrain, d.scene);
+    Camera cam; // looking north and down at the box from the south-east
+    cam.eye = {32, 40, 72};
+    cam.heading = 180;
+    cam.pitch = -45;
+    cam.width = 320;
+    cam.height = 240;
+    cam.near = 1;
+    cam.far = 300;
+    Environment with = d.environment, without = d.environment;
+    with.shadows = true;
+    const ColorImage on = render(d, r, method, cam, with), off = render(d, r, method, cam, without);
+    const auto at = [&](const ColorImage& img, double x, double z) {
+        const auto p = cam.project({x, 0, z});
+        EXPECT_TRUE(p.col >= 0 && p.col < cam.width && p.row >= 0 && p.row < cam.height) << x << "," << z;
+        return img.at(std::clamp(int(p.col), 0, cam.width - 1), std::clamp(int(p.row), 0, cam.height - 1));
+    };
+    // Inside the footprint: the ambient light alone, 200 x ambient.
+    const glm::vec3 ambient = d.environment.ambient * 200.0f;
+    for (const auto& [x, z] : {std::pair{32.0, 32.0}, {30.0, 30.0}, {34.5, 34.5}, {29.0, 34.0}}) {
+        const Rgb8 c = at(on, x, z);
+        EXPECT_NEAR(c.r, ambient.r, 3.0) << method << " at " << x << "," << z;
+        EXPECT_NEAR(c.g, ambient.g, 3.0) << method << " at " << x << "," << z;
+        EXPECT_NEAR(c.b, ambient.b, 3.0) << method << " at " << x << "," << z;
+    }
+    // Outside it (east of X = 36, south of Z = 36, north of Z = 28, and the
+    // box's sunny west side): exactly as without shadows.
+    for (const auto& [x, z] : {std::pair{40.0, 32.0}, {32.0, 40.0}, {32.0, 24.0}, {14.0, 32.0}, {44.0, 44.0}})
+        EXPECT_EQ(at(on, x, z), at(off, x, z)) << method << " at " << x << "," << z;
+    EXPECT_GT(at(off, 32, 32).r, ambient.r + 60); // the ground is sunlit without the box's shadow
+}
+
+} // namespace
+
+TEST(ObjectShadows, BoxOnFlatGroundInTheRayCaster) { expect_box_shadow("voxel"); }
+
+TEST(ObjectShadows, BoxOnFlatGroundInTheMesh) { expect_box_shadow("mesh"); }
