@@ -3,6 +3,7 @@
 #include "raycast/RayMarcher.h"
 
 #include "raycast/Atmosphere.h"
+#include "raycast/CellTraversal.h"
 #include "raycast/ImageryTexels.h"
 
 #include <glm/geometric.hpp>
@@ -48,38 +49,44 @@ RayMarcher::Hit RayMarcher::intersect_blocks(const glm::dvec3& a, const glm::dve
     double t0 = 0.0, t1 = 1.0;
     if (!clip_axis(a.x, d.x, 0.0, t.width(), t0, t1) || !clip_axis(a.z, d.z, 0.0, t.depth(), t0, t1)) return {};
     // Cell space: cell (i, j) = [i, i+1) x [j, j+1) holds the sample at its centre.
-    auto qx = [&](double s) { return (a.x + s * d.x) / hs + 0.5; };
-    auto qz = [&](double s) { return (a.z + s * d.z) / hs + 0.5; };
-    int ix = std::clamp(int(std::floor(qx(t0))), 0, t.cols() - 1);
-    int iz = std::clamp(int(std::floor(qz(t0))), 0, t.rows() - 1);
-    const double inf = std::numeric_limits<double>::infinity();
-    const double dqx = d.x / hs, dqz = d.z / hs;
-    const int sx = dqx > 0 ? 1 : -1, sz = dqz > 0 ? 1 : -1;
-    double next_x = dqx == 0 ? inf : ((dqx > 0 ? ix + 1 : ix) - (a.x / hs + 0.5)) / dqx;
-    double next_z = dqz == 0 ? inf : ((dqz > 0 ? iz + 1 : iz) - (a.z / hs + 0.5)) / dqz;
-    const double step_x = dqx == 0 ? inf : std::abs(1.0 / dqx), step_z = dqz == 0 ? inf : std::abs(1.0 / dqz);
-    // Boundaries crossed before t0 (the clip started inside a cell) are skipped.
-    while (next_x <= t0) next_x += step_x;
-    while (next_z <= t0) next_z += step_z;
+    CellTraversal cells(a, d, hs, t.cols(), t.rows(), t0);
+    // A rising segment is nowhere lower in a block than where it enters it:
+    // the block holds no hit while that height is above the block's highest
+    // sample (its pyramid height), and the traversal jumps over it.
+    const bool skip = pyramid_ && pyramid_->levels() > 0 && d.y > 0.0 && t.v_scale() > 0.0f;
+    int level = 0;
     double s = t0;
     for (;;) {
-        const double e = std::min({next_x, next_z, t1});
-        const double h = t.sample_height(iz, ix);
+        if (skip) {
+            const double ya = a.y + s * d.y;
+            // The coarsest block below the segment, from the last one's level.
+            while (level < pyramid_->levels() && ya > block_height(level + 1, cells.iz, cells.ix)) ++level;
+            while (level > 0 && !(ya > block_height(level, cells.iz, cells.ix))) --level;
+            if (level > 0) {
+                const int x0 = cells.ix >> level << level, z0 = cells.iz >> level << level;
+                const int x1 = std::min(x0 + (1 << level), t.cols()), z1 = std::min(z0 + (1 << level), t.rows());
+                // Both sides the segment can leave through are the grid's
+                // edges (always so for the whole grid's block: the segment
+                // above every sample): it leaves the grid, or ends, unhit.
+                if ((cells.sx > 0 ? x1 == t.cols() : x0 == 0) && (cells.sz > 0 ? z1 == t.rows() : z0 == 0)) return {};
+                const double e = cells.leave_block(x0, x1, z0, z1);
+                if (e >= t1) return {};
+                s = e;
+                if (cells.ix < 0 || cells.iz < 0 || cells.ix >= t.cols() || cells.iz >= t.rows()) return {};
+                continue;
+            }
+        }
+        const double e = std::min({cells.next_x, cells.next_z, t1});
+        const double h = t.sample_height(cells.iz, cells.ix);
         const double ya = a.y + s * d.y, yb = a.y + e * d.y;
         double hit_s = -1.0;
         if (ya <= h) hit_s = s;                                  // front face (or starts inside)
         else if (yb <= h) hit_s = s + (ya - h) / (ya - yb) * (e - s); // top face
-        if (hit_s >= 0.0) return {true, a + hit_s * d, color_at(iz, ix)};
+        if (hit_s >= 0.0) return {true, a + hit_s * d, color_at(cells.iz, cells.ix)};
         if (e >= t1) return {};
         s = e;
-        if (next_x <= next_z) {
-            ix += sx;
-            next_x += step_x;
-        } else {
-            iz += sz;
-            next_z += step_z;
-        }
-        if (ix < 0 || iz < 0 || ix >= t.cols() || iz >= t.rows()) return {};
+        cells.advance();
+        if (cells.ix < 0 || cells.iz < 0 || cells.ix >= t.cols() || cells.iz >= t.rows()) return {};
     }
 }
 

@@ -12,7 +12,11 @@
 //
 // Surfaces (DESIGN sec. 3), both limited to X in [0, width], Z in [0, depth]:
 //   blocks   - exact intersection with flat-topped columns centred on the
-//              samples (Amanatides-Woo traversal of the cells around samples);
+//              samples (Amanatides-Woo traversal of the cells around samples,
+//              raycast/CellTraversal.h); with a max-height pyramid, rising
+//              segments jump over the blocks they pass above, landing on the
+//              cells and parameters the plain traversal reaches (same hits,
+//              bit for bit);
 //   bilinear - march with steps of a quarter cell, then bisection.
 // The color is the nearest sample's; fog and sky follow Atmosphere.h.
 #include "core/AerialPerspective.h"
@@ -20,6 +24,7 @@
 #include "core/DataSet.h"
 #include "core/Image.h"
 #include "core/Terrain.h"
+#include "raycast/HeightPyramid.h"
 #include "raycast/RaycastOptions.h"
 
 #include "core/ImageryPyramid.h"
@@ -37,6 +42,9 @@ public:
     // Paints `colors` (one per sample, e.g. sun-lit; must outlive the
     // marcher) instead of the terrain's own; null: the terrain's.
     void set_colors(const std::vector<Rgb8>* colors) { colors_ = colors; }
+    // The terrain's max-height pyramid (HeightPyramid of this terrain; must
+    // outlive its use) for the `blocks` surface to skip with; null: every cell.
+    void set_pyramid(const HeightPyramid* pyramid) { pyramid_ = pyramid; }
     // Imagery finer than the samples (null: none): the painted colors are
     // then each sample's light (128 is 1), times the imagery's nearest texel
     // at the hit point on the mip level of the pixel's footprint
@@ -72,10 +80,19 @@ private:
     Rgb8 color_at(int row, int col) const {
         return colors_ ? (*colors_)[terrain_.index(row, col)] : terrain_.color(row, col);
     }
+    // The world height of the pyramid's level L block holding cell (row,
+    // col), as Terrain::sample_height converts its raw value (so that it
+    // bounds every sample_height in the block).
+    double block_height(int L, int row, int col) const {
+        const HeightPyramid::Level& l = pyramid_->level(L);
+        const std::uint16_t raw = l.heights[std::size_t(row >> L) * std::size_t(l.cols) + std::size_t(col >> L)];
+        return double(terrain_.v_scale() * float(raw) + terrain_.y_offset());
+    }
 
     const Terrain& terrain_;
     const Environment& env_;
     const std::vector<Rgb8>* colors_ = nullptr;
+    const HeightPyramid* pyramid_ = nullptr;
     const ImageryPyramid* imagery_ = nullptr;
 };
 

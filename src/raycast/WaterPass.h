@@ -25,12 +25,16 @@
 // Pixels elsewhere are not touched: without water the images are the caster's.
 //
 // Cost: one unprojection per pixel, and per water pixel one march of the
-// mirrored ray (a few hundred cells at most over the bench terrains).
+// mirrored ray. The mirrored ray rises, so for the `blocks` surface the march
+// jumps over every block of the terrain's max-height pyramid it passes above
+// (RayMarcher::set_pyramid: the same hits as the plain cell march, bit for
+// bit) and ends once it is above the whole terrain (the pyramid's top).
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
 #include "core/SunLight.h"
 #include "core/Terrain.h"
+#include "raycast/HeightPyramid.h"
 #include "raycast/RaycastOptions.h"
 
 #include <vector>
@@ -39,14 +43,18 @@ namespace overflight {
 
 class WaterPass {
 public:
-    // Keeps a reference to terrain (it must outlive this object).
-    explicit WaterPass(const Terrain& terrain) : terrain_(terrain) {}
+    // Keeps a reference to terrain (it must outlive this object) and builds
+    // its max-height pyramid (the terrain's heights must not change after).
+    explicit WaterPass(const Terrain& terrain);
     // The sample colors the reflections and the bottom show: `colors` as the
     // caster paints them (sun-lit; null: the terrain's; must outlive their
     // use), except over imagery finer than the samples, whose caster paints
     // light alone: then the terrain's own colors (the imagery averaged per
     // sample) lit for `env` here.
     void set_colors(const std::vector<Rgb8>* colors, const Environment& env);
+    // Off: the mirrored rays march every cell (the plain reference march the
+    // pyramid's skipping reproduces); on (the default): they skip.
+    void set_skipping(bool on) { skipping_ = on; }
 
     // Floods `color`/`depth` (the caster's images for `camera`, its size)
     // to env.water_level when env.water is on; returns the water pixels.
@@ -57,6 +65,8 @@ private:
     const Terrain& terrain_;
     const std::vector<Rgb8>* colors_ = nullptr;
     TerrainLighting albedo_lighting_{terrain_}; // used over imagery only
+    HeightPyramid pyramid_;
+    bool skipping_ = true;
 };
 
 } // namespace overflight
