@@ -5,9 +5,11 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <cpl_string.h>
+#include <gdal_alg.h>
 #include <ogr_srs_api.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
@@ -134,5 +136,23 @@ Dataset warp(GDALDatasetH src, const std::vector<std::string>& options, const st
     if (!out || usage_error) throw Error(subject, "cannot reproject raster: " + last_error("GDALWarp failed"));
     return out;
 }
+
+SuggestedWarpOutput::SuggestedWarpOutput(GDALDatasetH src, const std::string& dst_wkt, const std::string& subject,
+                                         const std::string& problem) {
+    char** to = dst_wkt.empty() ? nullptr : CSLSetNameValue(nullptr, "DST_SRS", dst_wkt.c_str());
+    CPLErrorReset();
+    transformer_ = GDALCreateGenImgProjTransformer2(src, nullptr, to);
+    CSLDestroy(to);
+    if (!transformer_) throw Error(subject, problem + ": " + last_error("no transformation to the target CRS"));
+    double extent[4];
+    const CPLErr e = GDALSuggestedWarpOutput2(src, GDALGenImgProjTransform, transformer_, geotransform, &cols, &rows,
+                                              extent, 0);
+    if (e != CE_None || !(std::abs(geotransform[1]) > 0)) {
+        GDALDestroyGenImgProjTransformer(transformer_);
+        throw Error(subject, problem + ": " + last_error("no suggested output grid"));
+    }
+}
+
+SuggestedWarpOutput::~SuggestedWarpOutput() { GDALDestroyGenImgProjTransformer(transformer_); }
 
 } // namespace overflight::gdal

@@ -39,4 +39,26 @@ Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, con
 Dataset translate_lazily(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject);
 Dataset warp(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject);
 
+// The output grid gdalwarp would make for `src` reprojected to `dst_wkt`
+// (empty: its own CRS), from GDAL's general image projection transformer
+// (GDALSuggestedWarpOutput2: the source's resolution carried over), and that
+// transformer from the source's pixels. Error(subject, problem + ": " +
+// GDAL's message) when there is no transformation or no grid.
+class SuggestedWarpOutput {
+public:
+    SuggestedWarpOutput(GDALDatasetH src, const std::string& dst_wkt, const std::string& subject,
+                        const std::string& problem);
+    ~SuggestedWarpOutput();
+    SuggestedWarpOutput(const SuggestedWarpOutput&) = delete;
+    SuggestedWarpOutput& operator=(const SuggestedWarpOutput&) = delete;
+
+    double geotransform[6] = {};
+    int cols = 0, rows = 0;
+    // For GDALGenImgProjTransform; valid while this object lives.
+    void* transformer() const { return transformer_; }
+
+private:
+    void* transformer_ = nullptr;
+};
+
 } // namespace overflight::gdal

@@ -411,20 +411,9 @@ MetricGrid metric_grid_of(GDALDatasetH ds, const std::string& path) {
     }
     if (m.warped) {
         // The output grid gdalwarp would make, from the transformer alone.
-        char** to = m.target.empty() ? nullptr : CSLSetNameValue(nullptr, "DST_SRS", m.wkt.c_str());
-        CPLErrorReset();
-        void* transformer = GDALCreateGenImgProjTransformer2(ds, nullptr, to);
-        CSLDestroy(to);
-        if (!transformer)
-            throw Error(path, "cannot reproject raster: " + gdal::last_error("no transformation to a metric CRS"));
-        double gt[6];
-        double extent[4];
-        int nx = 0, ny = 0;
-        const CPLErr e = GDALSuggestedWarpOutput2(ds, GDALGenImgProjTransform, transformer, gt, &nx, &ny, extent, 0);
-        if (e != CE_None) {
-            GDALDestroyGenImgProjTransformer(transformer);
-            throw Error(path, "cannot reproject raster: " + gdal::last_error("no suggested output"));
-        }
+        const gdal::SuggestedWarpOutput out(ds, m.target.empty() ? "" : m.wkt, path, "cannot reproject raster");
+        const double* gt = out.geotransform;
+        const int nx = out.cols, ny = out.rows;
         std::copy(gt, gt + 6, m.gt);
         m.cols = nx;
         m.rows = ny;
@@ -437,8 +426,7 @@ MetricGrid metric_grid_of(GDALDatasetH ds, const std::string& path) {
         } else {
             m.res = std::abs(gt[1]);
         }
-        m.inside_share = share_inside_source(transformer, m, GDALGetRasterXSize(ds), GDALGetRasterYSize(ds));
-        GDALDestroyGenImgProjTransformer(transformer);
+        m.inside_share = share_inside_source(out.transformer(), m, GDALGetRasterXSize(ds), GDALGetRasterYSize(ds));
     }
     if (!m.wkt.empty()) {
         Srs parsed(OSRNewSpatialReference(m.wkt.c_str()));

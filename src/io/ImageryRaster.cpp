@@ -23,25 +23,6 @@ std::string number(double v) {
     return buf;
 }
 
-// The pixel size GDAL suggests for `ds` reprojected to `wkt`
-// (GDALSuggestedWarpOutput2: the source's resolution carried over).
-double suggested_pixel_size(GDALDatasetH ds, const std::string& wkt, const std::string& subject) {
-    char** to = CSLSetNameValue(nullptr, "DST_SRS", wkt.c_str());
-    CPLErrorReset();
-    void* transformer = GDALCreateGenImgProjTransformer2(ds, nullptr, to);
-    CSLDestroy(to);
-    if (!transformer)
-        throw Error(subject, "cannot place it on the DEM: " + gdal::last_error("no transformation to the DEM's CRS"));
-    double gt[6];
-    double extent[4];
-    int nx = 0, ny = 0;
-    const CPLErr e = GDALSuggestedWarpOutput2(ds, GDALGenImgProjTransform, transformer, gt, &nx, &ny, extent, 0);
-    GDALDestroyGenImgProjTransformer(transformer);
-    if (e != CE_None || !(std::abs(gt[1]) > 0))
-        throw Error(subject, "cannot place it on the DEM: " + gdal::last_error("no suggested output grid"));
-    return std::abs(gt[1]);
-}
-
 // Reads the warped or stretched RGB (+ alpha) dataset into texels.
 Image2D<Rgba8> read_texels(GDALDatasetH ds, bool has_alpha, const std::string& subject) {
     const int w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds), bands = GDALGetRasterCount(ds);
@@ -139,7 +120,7 @@ ImageryLoad load_imagery(const std::string& color_path, const ImageryTarget& tar
     std::string how;
     int factor = 1;
     if (dem_geo && has_gt) {
-        const double res = suggested_pixel_size(picked.get(), target.wkt, color_path);
+        const double res = std::abs(gdal::SuggestedWarpOutput(picked.get(), target.wkt, color_path, "cannot place it on the DEM").geotransform[1]);
         const double dem_px = std::abs(target.gt[1]);
         // Within 1 % of the DEM's pixel: nothing finer to show.
         if (res >= 0.99 * dem_px) return out;
