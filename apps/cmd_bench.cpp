@@ -5,6 +5,7 @@
 // Table 2 (Z-buffer representations), ROAM's tessellation rate and error curve
 // (CMSC 23700 project 2a), and Zamri's accuracy of the LOD meshes against the full mesh.
 #include "CameraOptions.h"
+#include "ClassicBench.h"
 #include "Commands.h"
 #include "LookOptions.h"
 #include "OptionValues.h"
@@ -306,7 +307,7 @@ void add_bench_command(CLI::App& app) {
         std::string method_names;
         int frames = 10;
         int threads = 0;
-        bool json = false, markdown = false;
+        bool json = false, markdown = false, compare = false;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand(
@@ -323,6 +324,9 @@ void add_bench_command(CLI::App& app) {
     cmd->add_option("--methods", args->method_names, "comma-separated methods (default: all but raymarch; known: " +
                                                    terrain_method_names() + ")");
     cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->transform(decimal<int>());
+    cmd->add_flag("--compare", args->compare,
+                  "time voxel and voxel-literal beside the classic Voxel Space loop (no depth; one-sample and growing "
+                  "steps) on the same view, in ns per sample per core");
     cmd->add_flag("--json", args->json, "print one JSON object {\"runs\": [...]}");
     cmd->add_flag("--markdown", args->markdown, "print Markdown tables (the default without --json)");
     cmd->callback([args] {
@@ -341,6 +345,11 @@ void add_bench_command(CLI::App& app) {
                 methods.push_back(m);
             }
         }
+        if (args->compare)
+            for (const char* name : {"voxel", "voxel-literal"}) {
+                const MethodEntry* m = find_terrain_method(name);
+                if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+            }
         std::unique_ptr<tbb::global_control> limit;
         if (args->threads > 0)
             limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, args->threads);
@@ -383,6 +392,9 @@ void add_bench_command(CLI::App& app) {
         for (const MethodEntry* m : methods)
             for (nlohmann::json& run : bench_method(*m, session, camera, args->frames, full_mesh_depth, envs))
                 runs.push_back(std::move(run));
+        if (args->compare)
+            for (nlohmann::json& run : classic_voxel_space_bench(data.terrain, camera, args->frames))
+                runs.push_back(std::move(run));
         nlohmann::json out = {{"terrain", data.info.source.empty() ? args->terrain.terrain : data.info.source},
                                     {"rows", data.terrain.rows()},
                                     {"cols", data.terrain.cols()},
@@ -400,7 +412,10 @@ void add_bench_command(CLI::App& app) {
             const std::string text = out.dump() + "\n";
             std::fwrite(text.data(), 1, text.size(), stdout);
         }
-        if (args->markdown || !args->json) print_markdown(out, args->terrain.terrain, camera);
+        if (args->markdown || !args->json) {
+            print_markdown(out, args->terrain.terrain, camera);
+            if (args->compare) print_classic_comparison(out["runs"], out["threads"].get<int>());
+        }
     });
 }
 
