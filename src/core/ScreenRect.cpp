@@ -35,4 +35,10 @@ PixelRect screen_rect(std::span<const WorldBox> boxes, const Camera& camera) {
             clip(std::ceil(c1) + 1, camera.width), clip(std::ceil(r1) + 1, camera.height)};
 }
 
+PixelRect bounding_union(const PixelRect& a, const PixelRect& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    return {std::min(a.col0, b.col0), std::min(a.row0, b.row0), std::max(a.col1, b.col1), std::max(a.row1, b.row1)};
+}
+
 } // namespace overflight

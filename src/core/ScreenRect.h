@@ -31,4 +31,7 @@ struct PixelRect {
 // box in front gives an empty rectangle.
 PixelRect screen_rect(std::span<const WorldBox> boxes, const Camera& camera);
 
+// The smallest rectangle holding both (an empty one adds nothing).
+PixelRect bounding_union(const PixelRect& a, const PixelRect& b);
+
 } // namespace overflight

@@ -80,19 +80,77 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
 
 CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, const Environment& environment,
                                  RenderTarget& target, StepTimer& timer, const CompositeOptions& options) {
-    if (out.kind == MethodOutputKind::Resident) prepare(out.surface); // uploads are not part of a frame
-    begin(camera, environment, target, timer);
+    if (out.kind == MethodOutputKind::Images && (!out.color || !out.depth))
+        throw Error("compositor", "an image method produced no color or depth");
+    return compose(&out, -1, camera, environment, target, timer, options);
+}
+
+int Compositor::acquire_slot(const Camera& camera) {
+    stream_.reserve(camera.width, camera.height);
+    const int slot = next_slot_;
+    next_slot_ = (next_slot_ + 1) % ImageStream::kSlots;
+    stream_.acquire(slot);
+    return slot;
+}
+
+void Compositor::stage(int slot, const MethodOutput& out, const Camera& camera, const Environment& environment,
+                       const CompositeOptions& options) {
+    if (out.kind != MethodOutputKind::Images || !out.color || !out.depth)
+        throw Error("compositor", "only an image method's color and depth can be staged");
+    stream_.stage_color(slot, *out.color);
+    if (options.objects) stream_.stage_depth(slot, *out.depth, depth_rect(camera, environment, options));
+}
+
+CompositeCounts Compositor::draw_staged(int slot, const Camera& camera, const Environment& environment,
+                                        RenderTarget& target, StepTimer& timer, const CompositeOptions& options) {
+    return compose(nullptr, slot, camera, environment, target, timer, options);
+}
+
+PixelRect Compositor::object_shadow_rect(const Camera& camera, const Environment& environment) const {
+    // As begin() and ObjectShadowMap::update() decide it: shadows on, the sun
+    // above the horizon, objects to cast them, the sun's light painted.
+    const glm::vec3 sun = glm::length(environment.sun_dir) > 0 ? glm::normalize(environment.sun_dir) : glm::vec3(0, 1, 0);
+    if (!environment.shadows || !(sun.y > 0) || objects_.bounds().empty() || environment.baked) return {};
+    // The pixels an object's shadow can reach, down to the lowest terrain.
+    return screen_rect(ObjectShadowMap::reach(objects_.bounds(), sun, terrain_.min_height()), camera);
+}
+
+PixelRect Compositor::depth_rect(const Camera& camera, const Environment& environment,
+                                 const CompositeOptions& options) const {
+    if (options.full_depth) return {0, 0, camera.width, camera.height};
+    PixelRect r = objects_.screen_rect(camera);
+    if (options.vehicle) {
+        const WorldBox box = vehicle_.bounds(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
+        r = bounding_union(r, screen_rect(std::span<const WorldBox>(&box, 1), camera));
+    }
+    return bounding_union(r, object_shadow_rect(camera, environment));
+}
+
+CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Camera& camera,
+                                    const Environment& environment, RenderTarget& target, StepTimer& timer,
+                                    const CompositeOptions& options) {
+    const bool images = !out || out->kind == MethodOutputKind::Images;
+    if (!images) {
+        if (out->kind == MethodOutputKind::Resident) prepare(out->surface); // uploads are not part of a frame
+    }
+    // An image composite is drawn offscreen: a window's is then blitted to it.
+    RenderTarget* into = &target;
+    if (images && !target.offscreen()) {
+        if (!images_ || images_->width() != camera.width || images_->height() != camera.height)
+            images_ = std::make_unique<RenderTarget>(camera.width, camera.height);
+        into = images_.get();
+    }
+    begin(camera, environment, *into, timer);
     CompositeCounts counts;
-    if (out.kind == MethodOutputKind::Images) {
-        draw_images(out, camera, target, timer, options);
-        if (!options.objects) return counts;
-        if (object_shadow_.active() && !environment.baked) {
-            // The pixels an object's shadow can reach, down to the lowest terrain.
-            const PixelRect rect = screen_rect(
-                ObjectShadowMap::reach(objects_.bounds(), glm::vec3(frame_.block().sun_dir), terrain_.min_height()), camera);
-            timer.begin_gl("object_shadows");
-            object_shadow_pass_.draw(*out.depth, camera, rect);
-            timer.end_gl();
+    if (images) {
+        draw_images(out, slot, camera, environment, *into, timer, options);
+        if (options.objects) {
+            const PixelRect rect = object_shadow_rect(camera, environment);
+            if (object_shadow_.active() && !rect.empty()) {
+                timer.begin_gl("object_shadows");
+                object_shadow_pass_.draw(*into, camera, rect);
+                timer.end_gl();
+            }
         }
     } else {
         timer.begin_gl("sky");
@@ -102,7 +160,7 @@ CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, 
         timer.end_gl();
         if (options.wireframe) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         frame_.set_terrain_pass(true, environment.baked);
-        counts.terrain_primitives = draw_surface(out, camera, timer, counts);
+        counts.terrain_primitives = draw_surface(*out, camera, timer, counts);
         frame_.set_terrain_pass(false, false);
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
         if (environment.water) {
@@ -112,44 +170,38 @@ CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, 
         }
     }
 
-    // The objects over whatever depth the terrain left: Szenberg's composite.
-    target.bind();
-    frame_.bind();
-    depth_test_on();
-    timer.begin_gl("objects");
-    counts.object_triangles = objects_.draw();
-    if (options.vehicle)
-        counts.object_triangles += vehicle_.draw(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
-    timer.end_gl();
+    if (!images || options.objects) {
+        // The objects over whatever depth the terrain left: Szenberg's composite.
+        into->bind();
+        frame_.bind();
+        depth_test_on();
+        timer.begin_gl("objects");
+        counts.object_triangles = objects_.draw();
+        if (options.vehicle)
+            counts.object_triangles += vehicle_.draw(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
+        timer.end_gl();
+    }
+    if (into != &target) {
+        timer.begin_gl("blit");
+        into->blit_color_to(target);
+        timer.end_gl();
+        target.bind();
+    }
     return counts;
 }
 
-void Compositor::draw_images(const MethodOutput& out, const Camera& camera, RenderTarget& target, StepTimer& timer,
-                             const CompositeOptions& options) {
-    if (!out.color || !out.depth) throw Error("compositor", "an image method produced no color or depth");
-    if (target.offscreen()) {
-        timer.begin_gl("color_upload");
-        target.upload_color(*out.color);
-        timer.end_gl();
-        if (!options.objects) return;
-        // Objects only test depth inside their screen rectangle; the whole
-        // buffer is loaded when it is read back or a vehicle can be anywhere.
-        timer.begin_gl("depth_upload");
-        const bool full = options.full_depth || options.vehicle;
-        target.upload_depth(*out.depth, full ? std::nullopt : std::optional<PixelRect>(objects_.screen_rect(camera)));
-        timer.end_gl();
-        return;
-    }
-    if (!images_ || images_->width() != camera.width || images_->height() != camera.height)
-        images_ = std::make_unique<RenderTarget>(camera.width, camera.height);
+void Compositor::draw_images(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
+                             RenderTarget& into, StepTimer& timer, const CompositeOptions& options) {
+    // Staged now (draw()), or earlier on another thread (draw_staged()).
+    if (out) slot = acquire_slot(camera);
     timer.begin_gl("color_upload");
-    images_->upload_color(*out.color);
+    if (out) stream_.stage_color(slot, *out->color);
+    stream_.load_color(slot, into);
     timer.end_gl();
+    if (!options.objects) return;
     timer.begin_gl("depth_upload");
-    images_->upload_depth(*out.depth);
-    timer.end_gl();
-    timer.begin_gl("composite");
-    target.draw_from(*images_);
+    if (out) stream_.stage_depth(slot, *out->depth, depth_rect(camera, environment, options));
+    stream_.load_depth(slot, into);
     timer.end_gl();
 }
 

@@ -6,12 +6,17 @@
 // Z-buffer, so that they land on the same pixels whichever method drew the
 // ground (Szenberg et al. 1997 sec. 5, Fig. 5).
 //
-//   Images    the color image is loaded into the target ("color_upload"); with
-//             objects its window depth too ("depth_upload"; into an offscreen
-//             target only where objects can be drawn, unless the whole depth
-//             is read back or a vehicle flies); a window's default
-//             framebuffer receives both through a full-screen pass writing
-//             gl_FragDepth ("composite"). The ray cast paints its own sky.
+//   Images    the color image is loaded into an offscreen target
+//             ("color_upload"); with objects its window depth too
+//             ("depth_upload"), only where objects, the vehicle or the
+//             objects' shadows can be drawn (depth_rect(), the whole image
+//             when it is read back), the sky rows of that rectangle cleared
+//             without a transfer. The loads go through the persistently
+//             mapped slots of an ImageStream, whose CPU copy (stage()) may run
+//             on another thread ahead of the GL thread (the `fly` window casts
+//             and stages frame N+1 while frame N is drawn). A window receives
+//             the finished composite's color by a blit ("blit"): no
+//             full-screen pass, no depth written. The ray cast paints its own sky.
 //   Mesh      depth cleared and the sky drawn ("sky"), the arrays streamed to
 //             GL ("upload") and drawn lit and fogged ("terrain").
 //   Resident  depth cleared, sky, the representation uploaded on first use
@@ -47,6 +52,7 @@
 #include "gl/ObjectRenderer.h"
 #include "gl/ObjectShadowMap.h"
 #include "gl/RenderTarget.h"
+#include "gl/ImageStream.h"
 #include "gl/ImageryTexture.h"
 #include "gl/ShadowCeilingTexture.h"
 #include "gl/ShadowScreenPass.h"
@@ -94,14 +100,38 @@ public:
     // Uploads a resident representation now (draw() does it on first use).
     void prepare(ResidentSurface surface);
 
+    // The pipelined composite of an Images output, in three steps (draw()
+    // does all three in one go): acquire_slot() on the GL thread gives a slot
+    // of the image stream, for the camera's size, that GL no longer reads;
+    // stage() copies the output into it (no GL: any thread, one stage per
+    // slot at a time, while the GL thread may draw from another slot);
+    // draw_staged() on the GL thread then draws the frame from the slot like
+    // draw(), with the same camera, environment and options as stage().
+    int acquire_slot(const Camera& camera);
+    void stage(int slot, const MethodOutput& out, const Camera& camera, const Environment& environment,
+               const CompositeOptions& options);
+    CompositeCounts draw_staged(int slot, const Camera& camera, const Environment& environment, RenderTarget& target,
+                                StepTimer& timer, const CompositeOptions& options);
+
+    // The pixels of an Images composite whose depth is loaded: the objects'
+    // screen rectangle, the vehicle's, and the reach of the objects' shadows
+    // when the shadow pass runs; the whole image with options.full_depth.
+    // No GL: any thread.
+    PixelRect depth_rect(const Camera& camera, const Environment& environment, const CompositeOptions& options) const;
+
     const ObjectRenderer& objects() const { return objects_; }
 
 private:
     void begin(const Camera& camera, const Environment& environment, const RenderTarget& target, StepTimer& timer);
     // The shadow vector of the frame block for `environment` (sweeps and uploads when the sun moved).
     glm::vec4 terrain_shadow(const Environment& environment, StepTimer& timer);
-    void draw_images(const MethodOutput& out, const Camera& camera, RenderTarget& target, StepTimer& timer,
-                     const CompositeOptions& options);
+    CompositeCounts compose(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
+                            RenderTarget& target, StepTimer& timer, const CompositeOptions& options);
+    // Loads the images (staged now from `out` when given, else from `slot`) into `into`.
+    void draw_images(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
+                     RenderTarget& into, StepTimer& timer, const CompositeOptions& options);
+    // Where the objects' shadow pass darkens the ray-cast image (empty when it does not run).
+    PixelRect object_shadow_rect(const Camera& camera, const Environment& environment) const;
     long long draw_surface(const MethodOutput& out, const Camera& camera, StepTimer& timer, CompositeCounts& counts);
 
     const Terrain& terrain_;
@@ -119,7 +149,9 @@ private:
     StreamedMesh streamed_;
     std::unique_ptr<TerrainMesh> mesh_;
     std::unique_ptr<BlockTerrain> blocks_;
-    std::unique_ptr<RenderTarget> images_; // a window target's ray-cast images, drawn by a full-screen pass
+    ImageStream stream_;
+    int next_slot_ = 0;
+    std::unique_ptr<RenderTarget> images_; // a window's Images composite, blitted to it
 };
 
 } // namespace overflight::gl

@@ -29,7 +29,7 @@ struct FlightStep {
 };
 
 struct FlightSteps {
-    static constexpr int kMax = 8;
+    static constexpr int kMax = 12;
     std::array<FlightStep, kMax> step{};
     int count = 0;
 };

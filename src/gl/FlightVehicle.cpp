@@ -5,6 +5,7 @@
 #include "gl/ObjectGeometry.h"
 #include "sim/Hovercraft.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -24,9 +25,14 @@ FlightVehicle::FlightVehicle(const Terrain& terrain) : terrain_(terrain) {
     scene.objects.push_back(v);
     model_ = build_object_geometry(scene, terrain).triangles;
     placed_ = model_;
+    model_box_ = {glm::vec3(HUGE_VALF), glm::vec3(-HUGE_VALF)};
+    for (const glm::vec3& p : model_.positions) {
+        model_box_.lo = glm::min(model_box_.lo, p);
+        model_box_.hi = glm::max(model_box_.hi, p);
+    }
 }
 
-long long FlightVehicle::draw(double x, double z, double heading) {
+FlightVehicle::Frame FlightVehicle::frame_at(double x, double z, double heading) const {
     // The ground under the craft's four sides gives its slope along and across
     // the heading; the body is rotated onto that plane.
     const double h = glm::radians(heading);
@@ -35,19 +41,41 @@ long long FlightVehicle::draw(double x, double z, double heading) {
     const double front = ground(0.5 * kLength * fwd), back = ground(-0.5 * kLength * fwd);
     const double left = ground(0.5 * kWidth * side), right = ground(-0.5 * kWidth * side);
     const glm::dvec3 up{0, 1, 0};
-    const glm::dvec3 az = glm::normalize(fwd + up * ((front - back) / kLength));
+    Frame f;
+    f.az = glm::normalize(fwd + up * ((front - back) / kLength));
     const glm::dvec3 ax0 = glm::normalize(side + up * ((left - right) / kWidth));
-    const glm::dvec3 ay = glm::normalize(glm::cross(az, ax0));
-    const glm::dvec3 ax = glm::cross(ay, az);
+    f.ay = glm::normalize(glm::cross(f.az, ax0));
+    f.ax = glm::cross(f.ay, f.az);
     const double centre = std::max(ground_height(terrain_, x, z), 0.25 * (front + back + left + right));
-    const glm::dvec3 origin{x, centre + kHover, z};
+    f.origin = {x, centre + kHover, z};
+    return f;
+}
+
+long long FlightVehicle::draw(double x, double z, double heading) {
+    const Frame f = frame_at(x, z, heading);
     for (std::size_t i = 0; i < model_.positions.size(); ++i) {
         const glm::dvec3 p(model_.positions[i]), n(model_.normals[i]);
-        placed_.positions[i] = glm::vec3(origin + p.x * ax + p.y * ay + p.z * az);
-        placed_.normals[i] = glm::vec3(n.x * ax + n.y * ay + n.z * az);
+        placed_.positions[i] = glm::vec3(f.origin + p.x * f.ax + p.y * f.ay + p.z * f.az);
+        placed_.normals[i] = glm::vec3(n.x * f.ax + n.y * f.ay + n.z * f.az);
     }
     mesh_.upload(placed_);
     return mesh_.draw();
+}
+
+WorldBox FlightVehicle::bounds(double x, double z, double heading) const {
+    // The placed model box's corners bound the placed vertices (an affine map
+    // keeps them in the image of the box); float rounding of draw()'s
+    // positions is covered by half a metre of margin.
+    const Frame f = frame_at(x, z, heading);
+    glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 p{(k & 1) ? model_box_.hi.x : model_box_.lo.x, (k & 2) ? model_box_.hi.y : model_box_.lo.y,
+                           (k & 4) ? model_box_.hi.z : model_box_.lo.z};
+        const glm::dvec3 w = f.origin + p.x * f.ax + p.y * f.ay + p.z * f.az;
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+    }
+    return {glm::vec3(lo - 0.5), glm::vec3(hi + 0.5)};
 }
 
 } // namespace overflight::gl

@@ -6,6 +6,7 @@
 // that it neither sinks into nor floats over a hillside. Drawn lit and fogged
 // with the Z-buffer like every other object.
 #include "core/MeshArrays.h"
+#include "core/ScreenRect.h"
 #include "core/Terrain.h"
 #include "gl/StreamedMesh.h"
 
@@ -24,10 +25,21 @@ public:
     // sec. 1) and draws it (Frame uniforms bound). Returns triangles drawn.
     long long draw(double x, double z, double heading);
 
+    // A world box holding every vertex draw(x, z, heading) places: where a
+    // composite needs the terrain's depth for the vehicle. No GL: any thread.
+    WorldBox bounds(double x, double z, double heading) const;
+
 private:
+    // The body's frame on the ground at (x, z): origin and axes (right, up, forward).
+    struct Frame {
+        glm::dvec3 origin, ax, ay, az;
+    };
+    Frame frame_at(double x, double z, double heading) const;
+
     const Terrain& terrain_;
     MeshArrays model_;  // local frame: base centre at the origin, +Z forward
     MeshArrays placed_; // world, reused every frame
+    WorldBox model_box_; // of model_
     StreamedMesh mesh_;
 };
 

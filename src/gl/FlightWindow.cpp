@@ -11,8 +11,11 @@
 
 #include <GLFW/glfw3.h>
 #include <epoxy/gl.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -95,14 +98,38 @@ FlightMethodStats& stats_for(std::vector<FlightMethodStats>& all, const std::str
     return all.back();
 }
 
-// Produces and composites one frame of `method` into `target`, reporting the
-// method's CPU steps and the compositor's steps through `timer`.
-CompositeCounts draw_frame(TerrainMethod& method, MethodStats& stats, Compositor& compositor, const Camera& camera,
-                           const Environment& env, RenderTarget& target, StepTimer& timer,
-                           const CompositeOptions& options, const HovercraftState& vehicle) {
-    const MethodOutput out = method.produce(MethodView{camera, env, glm::dvec2(vehicle.x, vehicle.z)}, stats);
-    for (const MethodStep& s : stats.steps) timer.cpu_step(s.name, s.ms);
-    return compositor.draw(out, camera, env, target, timer, options);
+// One frame on its way to the screen: everything its composite needs, kept
+// from the moment it was simulated, so that what is drawn (terrain, objects,
+// vehicle, HUD) is the frame's own camera and state even when it is drawn
+// while the next frame is being cast.
+struct ShownFrame {
+    std::size_t method = 0;
+    std::string detail; // the method's level of detail when it was cast
+    Camera camera;
+    Environment environment;
+    CompositeOptions options;
+    HovercraftState vehicle;
+    ViewToggles toggles;
+    int slot = -1;       // the compositor's staged slot (an image method, cast ahead); -1: produce when drawn
+    MethodStats stats;   // the method's steps (and the staging's)
+    bool shot = false;   // P was pressed in this frame
+    bool last = false;   // the last frame of an unattended run
+};
+
+// An image method's output is cast and staged ahead (Compositor::stage()
+// copies it out of the method's buffers); a mesh method's arrays are read by
+// the compositor while it draws, so it runs in step with the drawing.
+bool casts_ahead(const TerrainMethod& method) { return method.output_kind() == MethodOutputKind::Images; }
+
+// Produces frame `f` with `method` and, when it is drawn later, stages its
+// images into f.slot. Runs on a oneTBB task beside the GL thread: it touches
+// no GL, only the method and the compositor's slot (Compositor::stage()).
+void cast_and_stage(TerrainMethod& method, Compositor& compositor, ShownFrame& f) {
+    const MethodOutput out =
+        method.produce(MethodView{f.camera, f.environment, glm::dvec2(f.vehicle.x, f.vehicle.z)}, f.stats);
+    const auto t0 = Clock::now();
+    compositor.stage(f.slot, out, f.camera, f.environment, f.options);
+    f.stats.add_step_since("stage", t0);
 }
 
 } // namespace
@@ -146,8 +173,6 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
     ColorImage shot;
     int shots = 0;
     double fps = 0, frame_ms = 0;
-    CompositeCounts counts;
-    MethodStats method_stats;
     // Step timings arrive a few frames late (GL queries); the HUD shows the
     // latest, the per-method statistics sum them.
     FlightSteps latest_steps;
@@ -159,14 +184,100 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
         stats_for(result.per_method, methods.name(std::size_t(tag))).add_steps(steps);
     });
     RenderTarget window_target = RenderTarget::default_framebuffer(options.width, options.height);
+
+    // Draws frame `f` (produced now unless it was cast ahead), the HUD over
+    // it, and shows it. The statistics count a frame when it is shown, with
+    // the wall-clock time since the previous one was.
+    auto shown_at = Clock::now();
+    auto show = [&](ShownFrame& f) {
+        // Isolated: while the cast of the next frame runs on a oneTBB task,
+        // parallel work here (the shadow sweep of a moved sun) must not pick
+        // that task up and keep the frame waiting for it.
+        tbb::this_task_arena::isolate([&] {
+            if (window_target.width() != f.camera.width || window_target.height() != f.camera.height)
+                window_target = RenderTarget::default_framebuffer(f.camera.width, f.camera.height);
+            timer.begin_frame(int(f.method));
+            CompositeCounts counts;
+            if (f.slot >= 0) {
+                for (const MethodStep& s : f.stats.steps) timer.cpu_step(s.name, s.ms);
+                counts = compositor.draw_staged(f.slot, f.camera, f.environment, window_target, timer, f.options);
+            } else {
+                const MethodOutput out = methods.get(f.method).produce(
+                    MethodView{f.camera, f.environment, glm::dvec2(f.vehicle.x, f.vehicle.z)}, f.stats);
+                for (const MethodStep& s : f.stats.steps) timer.cpu_step(s.name, s.ms);
+                counts = compositor.draw(out, f.camera, f.environment, window_target, timer, f.options);
+            }
+            // Screenshots are taken before the HUD so they match a replay.
+            if ((f.shot || f.last) && screenshot) {
+                window_target.read_color(shot);
+                if (f.shot) screenshot(shot, f.camera, shots++);
+                if (f.last) screenshot(shot, f.camera, -1);
+            }
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glViewport(0, 0, f.camera.width, f.camera.height);
+            const HovercraftState& s = f.vehicle;
+            const ViewToggles& t = f.toggles;
+            hud.visible = t.hud;
+            hud.draw(HudInfo{fps, frame_ms, session.ms_per_physics_step(), latest_steps, counts.terrain_primitives,
+                             counts.object_triangles, methods.name(f.method), f.detail, glm::dvec3(s.x, s.y, s.z),
+                             s.velocity, s.heading, to_string(t.fog), t.lighting, t.wireframe, t.shadows,
+                             f.environment.sun_dir, t.water, float(session.water_level().value_or(0.0))});
+            window.swap_buffers();
+
+            const auto now = Clock::now();
+            const double frame_s = std::chrono::duration<double>(now - shown_at).count();
+            shown_at = now;
+            frame_ms = 1e3 * frame_s;
+            fps = fps > 0 ? 0.9 * fps + 0.1 / std::max(frame_s, 1e-6) : 1.0 / std::max(frame_s, 1e-6);
+            FlightMethodStats& st = stats_for(result.per_method, methods.name(f.method));
+            ++st.frames;
+            st.seconds += frame_s;
+            st.triangles += counts.terrain_primitives;
+            st.object_triangles += counts.object_triangles;
+        });
+    };
+
+    // Frame N+1 is cast (and staged) on a oneTBB task while frame N is
+    // drawn: `ahead` is the frame in flight, `waiting` the one cast and not
+    // yet shown. The two swap roles every frame, so a task never writes the
+    // frame being drawn. The task group is declared after everything the
+    // task uses and is waited for before any of it goes away.
+    std::array<ShownFrame, 2> frames;
+    ShownFrame* ahead = nullptr;   // being cast
+    ShownFrame* waiting = nullptr; // cast, not shown yet
+    tbb::task_group casting;
+    struct Join {
+        tbb::task_group& group;
+        ~Join() {
+            try {
+                group.wait();
+            } catch (...) {
+            }
+        }
+    } join{casting};
+    auto finish_cast = [&] {
+        if (!ahead) return;
+        casting.wait(); // rethrows what the cast threw
+        waiting = ahead;
+        ahead = nullptr;
+    };
+    auto show_waiting = [&] {
+        if (!waiting) return;
+        show(*waiting);
+        waiting = nullptr;
+    };
     auto last = Clock::now();
 
     while (!session.finished()) {
-        const auto frame_start = Clock::now();
         glfwPollEvents();
         if (window.should_close()) break;
+        const std::vector<Key>& commands = session.begin_frame();
+        session.advance(seconds_since(last));
+        last = Clock::now();
+        // The commands act on the methods: the frame in flight is cast first.
+        finish_cast();
         bool quit = false, take_shot = false;
-        for (Key k : session.begin_frame()) {
+        for (Key k : commands) {
             if (k == Key::DetailUp) methods.get(current).scale_detail(std::sqrt(2.0));
             if (k == Key::DetailDown) methods.get(current).scale_detail(1.0 / std::sqrt(2.0));
             if (k == Key::NextMethod) {
@@ -177,50 +288,48 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
             quit |= k == Key::Quit;
         }
         if (quit) break;
-        session.advance(seconds_since(last));
-        last = Clock::now();
 
         int fb_w = 0, fb_h = 0;
         window.framebuffer_size(fb_w, fb_h);
+        if (fb_w <= 0 || fb_h <= 0) { // minimised: keep simulating, draw nothing
+            waiting = nullptr;
+            session.end_frame();
+            continue;
+        }
+        ShownFrame& f = frames[waiting == &frames[0] ? 1 : 0];
+        Camera& cam = session.camera();
+        cam.width = fb_w;
+        cam.height = fb_h;
         const HovercraftState& s = session.vehicle();
-        if (fb_w > 0 && fb_h > 0) { // minimised: keep simulating, draw nothing
-            Camera& cam = session.camera();
-            cam.width = fb_w;
-            cam.height = fb_h;
-            // Kept between frames: its full-screen copy pass is built once.
-            if (window_target.width() != fb_w || window_target.height() != fb_h)
-                window_target = RenderTarget::default_framebuffer(fb_w, fb_h);
-            const ViewToggles& t = session.toggles();
-            timer.begin_frame(int(current));
-            counts = draw_frame(methods.get(current), method_stats, compositor, cam, session.environment(),
-                                window_target, timer, {true, false, t.wireframe, VehiclePose{s.x, s.z, s.heading}}, s);
-            // Screenshots are taken before the HUD so they match a replay.
-            if ((take_shot || session.last_frame()) && screenshot) {
-                window_target.read_color(shot);
-                if (take_shot) screenshot(shot, cam, shots++);
-                if (session.last_frame()) screenshot(shot, cam, -1);
-            }
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            glViewport(0, 0, fb_w, fb_h);
-            hud.visible = t.hud;
-            hud.draw(HudInfo{fps, frame_ms, session.ms_per_physics_step(), latest_steps, counts.terrain_primitives,
-                             counts.object_triangles, methods.name(current), methods.get(current).detail(),
-                             glm::dvec3(s.x, s.y, s.z), s.velocity, s.heading, to_string(t.fog), t.lighting,
-                             t.wireframe, t.shadows, session.environment().sun_dir, t.water,
-                             float(session.water_level().value_or(0.0))});
-            window.swap_buffers();
+        const ViewToggles& t = session.toggles();
+        f.method = current;
+        f.detail = methods.get(current).detail();
+        f.camera = cam;
+        f.environment = session.environment();
+        f.options = {true, false, t.wireframe, VehiclePose{s.x, s.z, s.heading}};
+        f.vehicle = s;
+        f.toggles = t;
+        f.shot = take_shot;
+        f.last = session.last_frame();
+        f.slot = -1;
+        TerrainMethod& method = methods.get(current);
+        if (casts_ahead(method)) {
+            // The stream's slots are sized for the new frame: a frame cast at
+            // another size is shown first.
+            if (waiting && (waiting->camera.width != fb_w || waiting->camera.height != fb_h)) show_waiting();
+            f.slot = compositor.acquire_slot(f.camera);
+            ahead = &f;
+            casting.run([&method, &compositor, &f] { cast_and_stage(method, compositor, f); });
+            show_waiting();
+        } else {
+            show_waiting();
+            show(f);
         }
         session.end_frame();
-
-        const double frame_s = seconds_since(frame_start);
-        frame_ms = 1e3 * frame_s;
-        fps = fps > 0 ? 0.9 * fps + 0.1 / std::max(frame_s, 1e-6) : 1.0 / std::max(frame_s, 1e-6);
-        FlightMethodStats& st = stats_for(result.per_method, methods.name(current));
-        ++st.frames;
-        st.seconds += frame_s;
-        st.triangles += counts.terrain_primitives;
-        st.object_triangles += counts.object_triangles;
     }
+    // The frame still in flight is shown too: every recorded frame is drawn.
+    finish_cast();
+    show_waiting();
     timer.flush();
     result.record = session.record();
     result.physics_steps = session.physics_steps();

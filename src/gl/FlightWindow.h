@@ -6,6 +6,15 @@
 // window only turns GLFW events into keys and draws; the flight itself runs
 // without it in tests.
 //
+// An image method (the ray casters) runs one frame ahead of the screen: the
+// cast of frame N+1 and the copy of its images into the compositor's
+// persistently mapped pixel buffers (Compositor::stage) run on a oneTBB task
+// while the GL thread loads, composites and shows frame N, each frame drawn
+// with the camera, vehicle and toggles it was cast for. The physics keeps its
+// fixed steps (the session is advanced once per frame, as before); what
+// changes is that a key shows on screen one frame later. Mesh methods, whose
+// arrays the compositor reads while drawing, run in step with the screen.
+//
 // Keys (CMSC 23700 hovercraft project sec. 3.1, plus Tab, P and H): UP
 // accelerate, DOWN brake, LEFT/RIGHT turn, f fog (off, GL_EXP, atmosphere), 1 lighting, W wireframe,
 // + / _ level of detail x / ÷ sqrt 2, Tab next method (same camera), P

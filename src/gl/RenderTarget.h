@@ -8,13 +8,14 @@
 // Based on: Szenberg et al. 1997 sec. 5 (Fig. 5: the ray caster's color and
 // depth loaded into OpenGL, then objects drawn with the Z-buffer) and sec. 7,
 // Table 1 (color buffer load, Z-buffer load); here through pixel buffer
-// objects and glTextureSubImage2D instead of glDrawPixels.
+// objects and glTextureSubImage2D instead of glDrawPixels, and a window is
+// given the composite's color by a blit.
 #include "core/Image.h"
 #include "core/ScreenRect.h"
 #include "gl/GlProgram.h"
 
+#include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 namespace overflight::gl {
@@ -34,20 +35,25 @@ public:
     // Binds the target for drawing and sets the viewport to its size.
     void bind() const;
 
-    // Copies a core image into the color / depth attachment (through a PBO).
-    // The image must have the target's size; depth is window depth, 1.0 = sky.
-    // Offscreen targets only: a window target draws the images with a
-    // full-screen pass writing gl_FragDepth instead (upload_fullscreen).
-    // upload_depth loads only the pixels of `rect` (core rows, row 0 at the
-    // top; default the whole image) and leaves the rest of the attachment as
-    // it was: a composite needs depth only where objects can be drawn
-    // (ObjectRenderer::screen_rect). Within the rect, the rows above the
-    // topmost one holding terrain are cleared to 1.0 without a transfer.
-    void upload_color(const ColorImage& color);
-    void upload_depth(const DepthImage& depth, std::optional<PixelRect> rect = std::nullopt);
-    // Window targets (or any target): draws previously uploaded textures of an
-    // offscreen target `src` into this target's color and depth (gl_FragDepth).
-    void draw_from(const RenderTarget& src) const;
+    // Loads the color / depth attachment (offscreen targets) from a
+    // pixel-unpack buffer (gl/ImageStream.h) holding GL-order rows: the color
+    // as packed RGB bytes of the whole image at `offset`; the depth (window
+    // depth, 1.0 = sky) as packed floats of the rows [terrain_row, rect.row1)
+    // of `rect` (core rows, row 0 at the top) at `offset`, the rows of `rect`
+    // above terrain_row cleared to 1.0 without a transfer, and the rest of the
+    // attachment left as it was: a composite needs depth only where objects
+    // can be drawn (ObjectRenderer::screen_rect).
+    void load_color(GLuint buffer, std::size_t offset);
+    void load_depth(GLuint buffer, std::size_t offset, const PixelRect& rect, int terrain_row);
+    // Copies this offscreen target's color into `dst` (a window's default
+    // framebuffer or another target of the same size): a blit, no shader, no
+    // depth written.
+    void blit_color_to(const RenderTarget& dst) const;
+    // Offscreen targets: binds a framebuffer holding only the color
+    // attachment (viewport set), so that a pass can sample depth_texture()
+    // while it draws into the color.
+    void bind_color_only() const;
+    GLuint depth_texture() const { return depth_tex_.get(); }
 
     // Reads the attachments back into core images (resized to the target).
     void read_color(ColorImage& color) const;
@@ -57,10 +63,8 @@ private:
     RenderTarget() = default;
     int width_ = 0, height_ = 0;
     Framebuffer fbo_;
+    Framebuffer color_fbo_; // the color attachment alone
     Texture color_tex_, depth_tex_;
-    Buffer color_pbo_, depth_pbo_;
-    mutable Program copy_;        // full-screen gl_FragDepth pass, built on first use
-    mutable VertexArray copy_vao_;
     mutable std::vector<std::uint8_t> readback_; // reused between frames (no per-frame allocation)
 };
 

@@ -2,6 +2,8 @@
 // ray-cast image with depth. See ShadowScreenPass.h.
 #include "gl/ShadowScreenPass.h"
 
+#include "gl/RenderTarget.h"
+
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
@@ -20,16 +22,14 @@ void main() {
 )";
 
 const char* const kPassFs = R"(
-layout(binding = 9) uniform sampler2D scene_depth; // texel (col - col0, row - row0), core rows
+layout(binding = 9) uniform sampler2D scene_depth; // the target's depth attachment (GL rows)
 layout(location = 0) uniform mat4 clip_to_eye;     // inverse of view_proj: clip -> world - eye
-layout(location = 4) uniform ivec2 rect_origin;    // col0, row0
 layout(location = 0, index = 0) out vec4 add;
 layout(location = 0, index = 1) out vec4 factor;
 float height_at(ivec2 i, ivec2 last) { return texelFetch(shadow_ceiling, clamp(i, ivec2(0), last), 0).g; }
 void main() {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    int row = int(image.y) - 1 - px.y;
-    float d = texelFetch(scene_depth, ivec2(px.x, row) - rect_origin, 0).r;
+    float d = texelFetch(scene_depth, px, 0).r;
     if (d >= 1.0) discard;
     vec4 ndc = vec4((vec2(px) + 0.5) / image.xy * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
     vec4 e = clip_to_eye * ndc;
@@ -57,35 +57,22 @@ void main() {
 
 } // namespace
 
-void ShadowScreenPass::draw(const DepthImage& depth, const Camera& camera, const PixelRect& rect) {
+void ShadowScreenPass::draw(const RenderTarget& target, const Camera& camera, const PixelRect& rect) {
     if (rect.empty()) return;
     if (!program_) {
         program_ = make_program("object-shadow-pass", kPassVs, kPassFs);
         vao_ = make_vertex_array();
     }
     const int w = rect.col1 - rect.col0, h = rect.row1 - rect.row0;
-    if (!depth_ || w > width_ || h > height_) {
-        width_ = std::max(w, width_);
-        height_ = std::max(h, height_);
-        depth_ = make_texture(GL_TEXTURE_2D);
-        glTextureStorage2D(depth_.get(), 1, GL_R32F, width_, height_);
-        glTextureParameteri(depth_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(depth_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    }
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0); // from client memory, whatever pixel buffer an upload left bound
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, depth.width);
-    glTextureSubImage2D(depth_.get(), 0, 0, 0, w, h, GL_RED, GL_FLOAT,
-                        depth.pixels.data() + std::size_t(rect.row0) * std::size_t(depth.width) + std::size_t(rect.col0));
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    // The depth is sampled, so it must not be attached where the pass draws.
+    target.bind_color_only();
 
     // Eye-relative like FrameUniforms' view_proj, inverted in double.
     const glm::mat4 clip_to_eye(glm::inverse(camera.projection_matrix() * camera.view_matrix() *
                                              glm::translate(glm::dmat4(1.0), camera.eye)));
     glUseProgram(program_.get());
     glProgramUniformMatrix4fv(program_.get(), 0, 1, GL_FALSE, glm::value_ptr(clip_to_eye));
-    glProgramUniform2i(program_.get(), 4, rect.col0, rect.row0);
-    glBindTextureUnit(kUnit, depth_.get());
+    glBindTextureUnit(kUnit, target.depth_texture());
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glEnable(GL_SCISSOR_TEST);

@@ -15,26 +15,28 @@
 // dual-source blending (GL_ONE, GL_SRC1_COLOR). A pixel outside every
 // object's shadow gets f = 1 and stays as it was, bit for bit.
 #include "core/Camera.h"
-#include "core/Image.h"
 #include "core/ScreenRect.h"
 #include "gl/GlProgram.h"
 
 namespace overflight::gl {
 
+class RenderTarget;
+
 class ShadowScreenPass {
 public:
-    static constexpr GLuint kUnit = 9; // the image's depth within the rectangle
+    static constexpr GLuint kUnit = 9; // the target's depth attachment
 
-    // Darkens the pixels of `rect` (core rows) of the bound target that lie
-    // in the objects' shadows. Needs the frame block, the terrain's shadow
-    // ceiling texture and an active ObjectShadowMap bound.
-    void draw(const DepthImage& depth, const Camera& camera, const PixelRect& rect);
+    // Darkens the pixels of `rect` (core rows) of the offscreen `target` that
+    // lie in the objects' shadows, reading the terrain's window depth from
+    // the target's depth attachment, which must hold it within `rect` (the
+    // objects not drawn yet). Binds the target's color alone. Needs the frame
+    // block, the terrain's shadow ceiling texture and an active
+    // ObjectShadowMap bound.
+    void draw(const RenderTarget& target, const Camera& camera, const PixelRect& rect);
 
 private:
     Program program_;
     VertexArray vao_;
-    Texture depth_;
-    int width_ = 0, height_ = 0;
 };
 
 } // namespace overflight::gl

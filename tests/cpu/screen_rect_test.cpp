@@ -80,5 +80,20 @@ TEST(ScreenRect, RandomPointsInRandomBoxesProjectInside) {
     }
 }
 
+TEST(ScreenRect, BoundingUnionHoldsBothAndIgnoresEmpty) {
+    const PixelRect a{10, 20, 30, 40}, b{25, 5, 50, 35}, none{7, 7, 7, 9};
+    const PixelRect u = bounding_union(a, b);
+    EXPECT_EQ(u.col0, 10);
+    EXPECT_EQ(u.row0, 5);
+    EXPECT_EQ(u.col1, 50);
+    EXPECT_EQ(u.row1, 40);
+    const PixelRect ua = bounding_union(a, none), ub = bounding_union(none, b);
+    EXPECT_EQ(ua.col0, a.col0);
+    EXPECT_EQ(ua.row1, a.row1);
+    EXPECT_EQ(ub.col1, b.col1);
+    EXPECT_EQ(ub.row0, b.row0);
+    EXPECT_TRUE(bounding_union(none, PixelRect{}).empty());
+}
+
 } // namespace
 } // namespace overflight

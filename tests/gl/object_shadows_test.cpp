@@ -87,3 +87,39 @@ void expect_box_shadow(const char* method) {
 TEST(ObjectShadows, BoxOnFlatGroundInTheRayCaster) { expect_box_shadow("voxel"); }
 
 TEST(ObjectShadows, BoxOnFlatGroundInTheMesh) { expect_box_shadow("mesh"); }
+
+// The ray caster's composite loads depth only where the objects, the vehicle
+// and the objects' shadows can be drawn (Compositor::depth_rect): the same
+// pixels as with the whole depth loaded (a read-back asks for it), with the
+// vehicle in view beside the box's shadow.
+TEST(ObjectShadows, PartialDepthLoadDrawsTheSamePixelsAsTheWholeDepth) {
+    const DataSet d = box_scene();
+    gl::HeadlessRenderer r(d.terrain, d.scene);
+    Camera cam;
+    cam.eye = {32, 40, 72};
+    cam.heading = 180;
+    cam.pitch = -45;
+    cam.width = 320;
+    cam.height = 240;
+    cam.near = 1;
+    cam.far = 300;
+    Environment env = d.environment;
+    env.shadows = true;
+    const MethodSettings settings;
+    const std::unique_ptr<TerrainMethod> m = find_terrain_method("voxel")->create({d.terrain, settings, {}});
+    const gl::CompositeOptions options{true, false, false, gl::VehiclePose{44, 44, 30}};
+    MethodStats stats;
+    const MethodOutput out = m->produce({cam, env, glm::dvec2(44, 44)}, stats);
+    const PixelRect rect = r.compositor().depth_rect(cam, env, options);
+    EXPECT_FALSE(rect.empty());
+    EXPECT_LT(rect.area(), (long long)cam.width * cam.height) << "the test must load less than the whole depth";
+    ColorImage partial, whole;
+    DepthImage depth;
+    r.render(out, cam, env, options, partial, nullptr);
+    r.render(out, cam, env, options, whole, &depth);
+    EXPECT_EQ(partial.pixels, whole.pixels);
+    // The vehicle is drawn (its color differs from the grey ground and the red box).
+    const auto p = cam.project({44, 1, 44});
+    ASSERT_TRUE(p.in_front);
+    EXPECT_NE(partial.at(int(p.col), int(p.row)), out.color->at(int(p.col), int(p.row)));
+}

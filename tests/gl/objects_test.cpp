@@ -61,7 +61,7 @@ Frame voxel(const DataSet& d, const Camera& cam) {
 }
 
 // Over the ray caster without `read_depth` the composite loads depth only in
-// the objects' screen rectangle (RenderTarget::upload_depth), as bench does.
+// the objects' screen rectangle (Compositor::depth_rect), as bench does.
 Frame with_objects(gl::HeadlessRenderer& r, const char* method, const Camera& cam, const Frame* raycast,
                    bool read_depth = false) {
     Frame f;
