@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include <chrono>
+#include <vector>
 
 namespace overflight::gl {
 
@@ -62,7 +63,7 @@ glm::vec4 Compositor::terrain_shadow(const Environment& environment, StepTimer& 
 }
 
 void Compositor::begin(const Camera& camera, const Environment& environment, const RenderTarget& target,
-                       StepTimer& timer) {
+                       StepTimer& timer, const CompositeOptions& options) {
     camera.validate();
     if (camera.width != target.width() || camera.height != target.height())
         throw Error("camera", "image size differs from the render target");
@@ -71,8 +72,13 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
     imagery_texture_.bind();
     frame_.set_imagery(imagery_texture_.uniform());
     frame_.update(camera, environment, terrain_);
-    object_shadow_.update(shadow.x > 0, glm::vec3(frame_.block().sun_dir), objects_, frame_.block());
+    const glm::vec3 sun(frame_.block().sun_dir);
+    object_shadow_.update(shadow.x > 0, sun, objects_, frame_.block());
     object_shadow_.bind();
+    const bool moved = options.vehicle && vehicle_.place(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
+    vehicle_shadow_.update(shadow.x > 0 && options.vehicle, sun, vehicle_.bounds(), moved, [&] { vehicle_.draw(); },
+                           frame_.block());
+    vehicle_shadow_.bind();
     frame_.bind();
     target.bind();
     depth_test_on();
@@ -81,15 +87,20 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
 CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, const Environment& environment,
                                  RenderTarget& target, StepTimer& timer, const CompositeOptions& options) {
     if (out.kind == MethodOutputKind::Resident) prepare(out.surface); // uploads are not part of a frame
-    begin(camera, environment, target, timer);
+    begin(camera, environment, target, timer, options);
     CompositeCounts counts;
     if (out.kind == MethodOutputKind::Images) {
         draw_images(out, camera, target, timer, options);
         if (!options.objects) return counts;
-        if (object_shadow_.active() && !environment.baked) {
-            // The pixels an object's shadow can reach, down to the lowest terrain.
-            const PixelRect rect = screen_rect(
-                ObjectShadowMap::reach(objects_.bounds(), glm::vec3(frame_.block().sun_dir), terrain_.min_height()), camera);
+        if ((object_shadow_.active() || vehicle_shadow_.active()) && !environment.baked) {
+            // The pixels an object's or the vehicle's shadow can reach, down to the lowest terrain.
+            const glm::vec3 sun(frame_.block().sun_dir);
+            std::vector<WorldBox> reach;
+            if (object_shadow_.active()) reach = ObjectShadowMap::reach(objects_.bounds(), sun, terrain_.min_height());
+            if (vehicle_shadow_.active())
+                for (const WorldBox& b : ObjectShadowMap::reach(vehicle_.bounds(), sun, terrain_.min_height()))
+                    reach.push_back(b);
+            const PixelRect rect = screen_rect(reach, camera);
             timer.begin_gl("object_shadows");
             object_shadow_pass_.draw(*out.depth, camera, rect);
             timer.end_gl();
@@ -118,8 +129,7 @@ CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, 
     depth_test_on();
     timer.begin_gl("objects");
     counts.object_triangles = objects_.draw();
-    if (options.vehicle)
-        counts.object_triangles += vehicle_.draw(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
+    if (options.vehicle) counts.object_triangles += vehicle_.draw();
     timer.end_gl();
     return counts;
 }

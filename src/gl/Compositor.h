@@ -27,7 +27,8 @@
 // objects cast theirs onto the terrain and each other through a shadow map
 // from the sun (ObjectShadowMap, rendered when the sun moves), read in
 // shade() and, on the ray casters' images, by ShadowScreenPass
-// ("object_shadows"). The vehicle casts none.
+// ("object_shadows"). The vehicle casts its shadow the same way through a
+// second map fitted to it alone, rendered whenever it moved.
 //
 // Fog used by every program (the ray caster matches it, raycast/Atmosphere.h):
 //     f = exp(-fog_density * d),  d = |P - eye| (eye-space distance),
@@ -95,9 +96,11 @@ public:
     void prepare(ResidentSurface surface);
 
     const ObjectRenderer& objects() const { return objects_; }
+    WaterPlane& water() { return water_; }
 
 private:
-    void begin(const Camera& camera, const Environment& environment, const RenderTarget& target, StepTimer& timer);
+    void begin(const Camera& camera, const Environment& environment, const RenderTarget& target, StepTimer& timer,
+               const CompositeOptions& options);
     // The shadow vector of the frame block for `environment` (sweeps and uploads when the sun moved).
     glm::vec4 terrain_shadow(const Environment& environment, StepTimer& timer);
     void draw_images(const MethodOutput& out, const Camera& camera, RenderTarget& target, StepTimer& timer,
@@ -110,6 +113,8 @@ private:
     bool shadow_valid_ = false;
     ShadowCeilingTexture shadow_texture_;
     ObjectShadowMap object_shadow_;
+    ObjectShadowMap vehicle_shadow_{ObjectShadowMap::kVehicleUnit, ObjectShadowMap::kVehicleBinding,
+                                    ObjectShadowMap::kVehicleSize};
     ShadowScreenPass object_shadow_pass_;
     ImageryTexture imagery_texture_;
     SkyPass sky_;

@@ -8,7 +8,9 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace overflight::gl {
 
@@ -26,7 +28,12 @@ FlightVehicle::FlightVehicle(const Terrain& terrain) : terrain_(terrain) {
     placed_ = model_;
 }
 
-long long FlightVehicle::draw(double x, double z, double heading) {
+bool FlightVehicle::place(double x, double z, double heading) {
+    if (placed_once_ && x == px_ && z == pz_ && heading == pheading_) return false;
+    placed_once_ = true;
+    px_ = x;
+    pz_ = z;
+    pheading_ = heading;
     // The ground under the craft's four sides gives its slope along and across
     // the heading; the body is rotated onto that plane.
     const double h = glm::radians(heading);
@@ -41,13 +48,17 @@ long long FlightVehicle::draw(double x, double z, double heading) {
     const glm::dvec3 ax = glm::cross(ay, az);
     const double centre = std::max(ground_height(terrain_, x, z), 0.25 * (front + back + left + right));
     const glm::dvec3 origin{x, centre + kHover, z};
+    WorldBox box{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(-std::numeric_limits<float>::max())};
     for (std::size_t i = 0; i < model_.positions.size(); ++i) {
         const glm::dvec3 p(model_.positions[i]), n(model_.normals[i]);
         placed_.positions[i] = glm::vec3(origin + p.x * ax + p.y * ay + p.z * az);
         placed_.normals[i] = glm::vec3(n.x * ax + n.y * ay + n.z * az);
+        box.lo = glm::min(box.lo, placed_.positions[i]);
+        box.hi = glm::max(box.hi, placed_.positions[i]);
     }
     mesh_.upload(placed_);
-    return mesh_.draw();
+    bounds_.assign(1, box);
+    return true;
 }
 
 } // namespace overflight::gl

@@ -4,10 +4,14 @@
 // `vehicle` shape, built once, placed every frame where the simulation put the
 // vehicle, hovering just above the ground and tilted to the local slope so
 // that it neither sinks into nor floats over a hillside. Drawn lit and fogged
-// with the Z-buffer like every other object.
+// with the Z-buffer like every other object, and into its own shadow map from
+// the sun (gl/ObjectShadowMap.h) so that it casts a shadow like them.
 #include "core/MeshArrays.h"
+#include "core/ScreenRect.h"
 #include "core/Terrain.h"
 #include "gl/StreamedMesh.h"
+
+#include <vector>
 
 namespace overflight::gl {
 
@@ -21,14 +25,22 @@ public:
     explicit FlightVehicle(const Terrain& terrain);
 
     // Places the vehicle at world (x, z) facing `heading` (degrees, DESIGN
-    // sec. 1) and draws it (Frame uniforms bound). Returns triangles drawn.
-    long long draw(double x, double z, double heading);
+    // sec. 1), uploading its triangles when the pose changed. Returns true
+    // when it did (the vehicle moved since the last call).
+    bool place(double x, double z, double heading);
+    // The placed vehicle's world bounds (one box; empty before place()).
+    const std::vector<WorldBox>& bounds() const { return bounds_; }
+    // Draws the placed vehicle (Frame uniforms bound). Returns triangles drawn.
+    long long draw() const { return mesh_.draw(); }
 
 private:
     const Terrain& terrain_;
     MeshArrays model_;  // local frame: base centre at the origin, +Z forward
     MeshArrays placed_; // world, reused every frame
     StreamedMesh mesh_;
+    std::vector<WorldBox> bounds_;
+    bool placed_once_ = false;
+    double px_ = 0, pz_ = 0, pheading_ = 0;
 };
 
 } // namespace overflight::gl
