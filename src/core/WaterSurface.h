@@ -44,7 +44,9 @@
 //            depths' light alone; then the extinction over the eye's path to
 //            it. The terrain above the water is not seen through the surface
 //            (the sky only), a simplification;
-//   below the horizon, where no terrain is hit, the depths' light.
+//   where no terrain is hit and no surface over the terrain (below the
+//            horizon, or rising to the level beyond the terrain's edge), the
+//            depths' light.
 //
 // No GL, no I/O.
 #include "core/DataSet.h"

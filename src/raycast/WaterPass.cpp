@@ -161,8 +161,8 @@ long long WaterPass::apply_under(const Camera& camera, const Environment& env, S
                 }
                 const double path = underwater_path(camera.eye, q, level);
                 pixel = to_rgb8(glm::clamp(underwater_color(env, unit_rgb(pixel), float(path)), 0.0f, 1.0f));
-            } else if (!(d.y > 0.0)) {
-                pixel = deep; // below the horizon, no terrain: the depths
+            } else {
+                pixel = deep; // no terrain, no surface over the terrain: the depths
             }
         }
         surface += n;
