@@ -59,6 +59,45 @@ WaterLight water_light(const Environment& env, const WaterSample& s) {
     return out;
 }
 
+glm::vec3 water_deep_light(const Environment& env) {
+    const glm::vec3 light = env.baked ? glm::vec3(1.0f) : sample_light(env, glm::vec3(0.0f, 1.0f, 0.0f), true);
+    return glm::vec3(kWaterDeep[0], kWaterDeep[1], kWaterDeep[2]) * light;
+}
+
+double underwater_path(const glm::dvec3& eye, const glm::dvec3& point, double level) {
+    const double length = glm::length(point - eye);
+    if (!(point.y > level)) return length;
+    // Only the part up to the level: the fraction (level - eye) / (point - eye) of it.
+    return length * std::clamp((level - eye.y) / (point.y - eye.y), 0.0, 1.0);
+}
+
+glm::vec3 underwater_color(const Environment& env, const glm::vec3& color, float path) {
+    const glm::vec3 deep = water_deep_light(env);
+    glm::vec3 out;
+    for (int c = 0; c < 3; ++c) {
+        const float t = std::exp(-kWaterAbsorption[c] * std::max(path, 0.0f));
+        out[c] = color[c] * t + deep[c] * (1.0f - t);
+    }
+    return out;
+}
+
+glm::vec3 water_refract_up(const glm::vec3& view, const glm::vec3& normal) {
+    // GLSL's refract(I, N, eta) with N = -normal facing the ray, eta = n_water / n_air.
+    const glm::vec3 n = -normal;
+    const float d = glm::dot(n, view), eta = kWaterIndex;
+    const float k = 1.0f - eta * eta * (1.0f - d * d);
+    if (k < 0.0f) return glm::vec3(0.0f);
+    return eta * view - (eta * d + std::sqrt(k)) * n;
+}
+
+glm::vec3 water_underside(const Environment& env, const glm::vec3& view, const glm::vec3& normal, const glm::vec3& sky) {
+    const glm::vec3 deep = water_deep_light(env);
+    const glm::vec3 t = water_refract_up(view, normal);
+    if (t == glm::vec3(0.0f)) return deep;
+    const float f = water_fresnel(glm::dot(t, normal));
+    return sky * (1.0f - f) + deep * f;
+}
+
 double default_water_level(const Terrain& terrain, const Environment& env) {
     if (env.sea_level) return double(*env.sea_level);
     if (terrain.min_height() <= 0.0f && terrain.max_height() >= 0.0f) return 0.0;

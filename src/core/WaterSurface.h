@@ -30,6 +30,24 @@
 //   which a GL blend (ONE, ONE_MINUS_SRC_ALPHA) does and the ray casters do
 //   per pixel (W < 1: F >= F0).
 //
+// Under water (the eye below the level; the GL programs through fogged() and
+// the water pass, the ray casters in raycast/WaterPass.h):
+//   extinction  everything seen is dimmed over its path p in the water by
+//            the same Beer-Lambert law towards the deep water's light:
+//            c' = c T + deep light (1 - T), T_c = exp(-absorption_c p), applied
+//            after the air's fog to what the renderer painted (objects too);
+//   surface    seen from below (rays rising to the plane before the terrain)
+//            it is opaque at the plane's depth: inside Snell's window (the
+//            view ray refracts into air, n = 1.33) the sky along the refracted
+//            ray times (1 - F) plus the depths' light times F, F Schlick's at
+//            the refracted angle; outside it (total internal reflection) the
+//            depths' light alone; then the extinction over the eye's path to
+//            it. The terrain above the water is not seen through the surface
+//            (the sky only), a simplification;
+//   where no terrain is hit and no surface over the terrain (below the
+//            horizon, or rising to the level beyond the terrain's edge), the
+//            depths' light.
+//
 // No GL, no I/O.
 #include "core/DataSet.h"
 #include "core/Terrain.h"
@@ -94,6 +112,28 @@ glm::vec3 water_reflect(const glm::vec3& view, const glm::vec3& normal);
 
 // The surface's light (WaterLight) for one point.
 WaterLight water_light(const Environment& env, const WaterSample& s);
+
+// Water's index of refraction (air = 1).
+inline constexpr float kWaterIndex = 1.33f;
+
+// The light of deep water: kWaterDeep times the sun and ambient light of a
+// level surface (1 with Environment::baked).
+glm::vec3 water_deep_light(const Environment& env);
+
+// The length of the segment from `eye` (below `level`) to `point` that lies
+// under the level.
+double underwater_path(const glm::dvec3& eye, const glm::dvec3& point, double level);
+
+// `color` ([0, 1]) seen through `path` world units of water: c T + deep light (1 - T).
+glm::vec3 underwater_color(const Environment& env, const glm::vec3& color, float path);
+
+// The direction a view ray `view` (unit, rising) from under the water takes
+// into the air through the waves' `normal`; zero under total internal reflection.
+glm::vec3 water_refract_up(const glm::vec3& view, const glm::vec3& normal);
+
+// The surface seen from below (before the extinction): `sky` ([0, 1]) is
+// the sky's color along water_refract_up(view, normal), unused when that is zero.
+glm::vec3 water_underside(const Environment& env, const glm::vec3& view, const glm::vec3& normal, const glm::vec3& sky);
 
 // The level `--water` alone floods to: the data set's sea level
 // (Environment::sea_level) if it gives one; else 0 when the terrain's

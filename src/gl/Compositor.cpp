@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include <chrono>
+#include <vector>
 
 namespace overflight::gl {
 
@@ -62,7 +63,7 @@ glm::vec4 Compositor::terrain_shadow(const Environment& environment, StepTimer& 
 }
 
 void Compositor::begin(const Camera& camera, const Environment& environment, const RenderTarget& target,
-                       StepTimer& timer) {
+                       StepTimer& timer, const CompositeOptions& options) {
     camera.validate();
     if (camera.width != target.width() || camera.height != target.height())
         throw Error("camera", "image size differs from the render target");
@@ -71,8 +72,13 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
     imagery_texture_.bind();
     frame_.set_imagery(imagery_texture_.uniform());
     frame_.update(camera, environment, terrain_);
-    object_shadow_.update(shadow.x > 0, glm::vec3(frame_.block().sun_dir), objects_, frame_.block());
+    const glm::vec3 sun(frame_.block().sun_dir);
+    object_shadow_.update(shadow.x > 0, sun, objects_, frame_.block());
     object_shadow_.bind();
+    const bool moved = options.vehicle && vehicle_.place(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
+    vehicle_shadow_.update(shadow.x > 0 && options.vehicle, sun, vehicle_.bounds(), moved, [&] { vehicle_.draw(); },
+                           frame_.block());
+    vehicle_shadow_.bind();
     frame_.bind();
     target.bind();
     depth_test_on();
@@ -106,13 +112,19 @@ CompositeCounts Compositor::draw_staged(int slot, const Camera& camera, const En
     return compose(nullptr, slot, camera, environment, target, timer, options);
 }
 
-PixelRect Compositor::object_shadow_rect(const Camera& camera, const Environment& environment) const {
+PixelRect Compositor::object_shadow_rect(const Camera& camera, const Environment& environment,
+                                         const CompositeOptions& options) const {
     // As begin() and ObjectShadowMap::update() decide it: shadows on, the sun
-    // above the horizon, objects to cast them, the sun's light painted.
+    // above the horizon, objects or the vehicle to cast them, the sun's light
+    // painted. The vehicle's box is where it will be placed (bounds_at), as
+    // this may run before begin() places it.
     const glm::vec3 sun = glm::length(environment.sun_dir) > 0 ? glm::normalize(environment.sun_dir) : glm::vec3(0, 1, 0);
-    if (!environment.shadows || !(sun.y > 0) || objects_.bounds().empty() || environment.baked) return {};
+    if (!environment.shadows || !(sun.y > 0) || environment.baked) return {};
+    std::vector<WorldBox> casters = objects_.bounds();
+    if (options.vehicle) casters.push_back(vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading));
+    if (casters.empty()) return {};
     // The pixels an object's shadow can reach, down to the lowest terrain.
-    return screen_rect(ObjectShadowMap::reach(objects_.bounds(), sun, terrain_.min_height()), camera);
+    return screen_rect(ObjectShadowMap::reach(casters, sun, terrain_.min_height()), camera);
 }
 
 PixelRect Compositor::depth_rect(const Camera& camera, const Environment& environment,
@@ -120,10 +132,10 @@ PixelRect Compositor::depth_rect(const Camera& camera, const Environment& enviro
     if (options.full_depth) return {0, 0, camera.width, camera.height};
     PixelRect r = objects_.screen_rect(camera);
     if (options.vehicle) {
-        const WorldBox box = vehicle_.bounds(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
+        const WorldBox box = vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
         r = bounding_union(r, screen_rect(std::span<const WorldBox>(&box, 1), camera));
     }
-    return bounding_union(r, object_shadow_rect(camera, environment));
+    return bounding_union(r, object_shadow_rect(camera, environment, options));
 }
 
 CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Camera& camera,
@@ -140,13 +152,13 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
             images_ = std::make_unique<RenderTarget>(camera.width, camera.height);
         into = images_.get();
     }
-    begin(camera, environment, *into, timer);
+    begin(camera, environment, *into, timer, options);
     CompositeCounts counts;
     if (images) {
         draw_images(out, slot, camera, environment, *into, timer, options);
         if (options.objects) {
-            const PixelRect rect = object_shadow_rect(camera, environment);
-            if (object_shadow_.active() && !rect.empty()) {
+            const PixelRect rect = object_shadow_rect(camera, environment, options);
+            if ((object_shadow_.active() || vehicle_shadow_.active()) && !rect.empty()) {
                 timer.begin_gl("object_shadows");
                 object_shadow_pass_.draw(*into, camera, rect);
                 timer.end_gl();
@@ -177,8 +189,7 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
         depth_test_on();
         timer.begin_gl("objects");
         counts.object_triangles = objects_.draw();
-        if (options.vehicle)
-            counts.object_triangles += vehicle_.draw(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
+        if (options.vehicle) counts.object_triangles += vehicle_.draw();
         timer.end_gl();
     }
     if (into != &target) {

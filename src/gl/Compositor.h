@@ -32,7 +32,8 @@
 // objects cast theirs onto the terrain and each other through a shadow map
 // from the sun (ObjectShadowMap, rendered when the sun moves), read in
 // shade() and, on the ray casters' images, by ShadowScreenPass
-// ("object_shadows"). The vehicle casts none.
+// ("object_shadows"). The vehicle casts its shadow the same way through a
+// second map fitted to it alone, rendered whenever it moved.
 //
 // Fog used by every program (the ray caster matches it, raycast/Atmosphere.h):
 //     f = exp(-fog_density * d),  d = |P - eye| (eye-space distance),
@@ -120,9 +121,11 @@ public:
     PixelRect depth_rect(const Camera& camera, const Environment& environment, const CompositeOptions& options) const;
 
     const ObjectRenderer& objects() const { return objects_; }
+    WaterPlane& water() { return water_; }
 
 private:
-    void begin(const Camera& camera, const Environment& environment, const RenderTarget& target, StepTimer& timer);
+    void begin(const Camera& camera, const Environment& environment, const RenderTarget& target, StepTimer& timer,
+               const CompositeOptions& options);
     // The shadow vector of the frame block for `environment` (sweeps and uploads when the sun moved).
     glm::vec4 terrain_shadow(const Environment& environment, StepTimer& timer);
     CompositeCounts compose(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
@@ -131,7 +134,7 @@ private:
     void draw_images(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
                      RenderTarget& into, StepTimer& timer, const CompositeOptions& options);
     // Where the objects' shadow pass darkens the ray-cast image (empty when it does not run).
-    PixelRect object_shadow_rect(const Camera& camera, const Environment& environment) const;
+    PixelRect object_shadow_rect(const Camera& camera, const Environment& environment, const CompositeOptions& options) const;
     long long draw_surface(const MethodOutput& out, const Camera& camera, StepTimer& timer, CompositeCounts& counts);
 
     const Terrain& terrain_;
@@ -140,6 +143,8 @@ private:
     bool shadow_valid_ = false;
     ShadowCeilingTexture shadow_texture_;
     ObjectShadowMap object_shadow_;
+    ObjectShadowMap vehicle_shadow_{ObjectShadowMap::kVehicleUnit, ObjectShadowMap::kVehicleBinding,
+                                    ObjectShadowMap::kVehicleSize};
     ShadowScreenPass object_shadow_pass_;
     ImageryTexture imagery_texture_;
     SkyPass sky_;

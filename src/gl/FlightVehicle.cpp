@@ -10,6 +10,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <cmath>
+#include <limits>
 
 namespace overflight::gl {
 
@@ -51,20 +52,29 @@ FlightVehicle::Frame FlightVehicle::frame_at(double x, double z, double heading)
     return f;
 }
 
-long long FlightVehicle::draw(double x, double z, double heading) {
+bool FlightVehicle::place(double x, double z, double heading) {
+    if (placed_once_ && x == px_ && z == pz_ && heading == pheading_) return false;
+    placed_once_ = true;
+    px_ = x;
+    pz_ = z;
+    pheading_ = heading;
     const Frame f = frame_at(x, z, heading);
+    WorldBox box{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(-std::numeric_limits<float>::max())};
     for (std::size_t i = 0; i < model_.positions.size(); ++i) {
         const glm::dvec3 p(model_.positions[i]), n(model_.normals[i]);
         placed_.positions[i] = glm::vec3(f.origin + p.x * f.ax + p.y * f.ay + p.z * f.az);
         placed_.normals[i] = glm::vec3(n.x * f.ax + n.y * f.ay + n.z * f.az);
+        box.lo = glm::min(box.lo, placed_.positions[i]);
+        box.hi = glm::max(box.hi, placed_.positions[i]);
     }
     mesh_.upload(placed_);
-    return mesh_.draw();
+    bounds_.assign(1, box);
+    return true;
 }
 
-WorldBox FlightVehicle::bounds(double x, double z, double heading) const {
+WorldBox FlightVehicle::bounds_at(double x, double z, double heading) const {
     // The placed model box's corners bound the placed vertices (an affine map
-    // keeps them in the image of the box); float rounding of draw()'s
+    // keeps them in the image of the box); float rounding of place()'s
     // positions is covered by half a metre of margin.
     const Frame f = frame_at(x, z, heading);
     glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);

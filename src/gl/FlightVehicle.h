@@ -4,11 +4,14 @@
 // `vehicle` shape, built once, placed every frame where the simulation put the
 // vehicle, hovering just above the ground and tilted to the local slope so
 // that it neither sinks into nor floats over a hillside. Drawn lit and fogged
-// with the Z-buffer like every other object.
+// with the Z-buffer like every other object, and into its own shadow map from
+// the sun (gl/ObjectShadowMap.h) so that it casts a shadow like them.
 #include "core/MeshArrays.h"
 #include "core/ScreenRect.h"
 #include "core/Terrain.h"
 #include "gl/StreamedMesh.h"
+
+#include <vector>
 
 namespace overflight::gl {
 
@@ -22,12 +25,17 @@ public:
     explicit FlightVehicle(const Terrain& terrain);
 
     // Places the vehicle at world (x, z) facing `heading` (degrees, DESIGN
-    // sec. 1) and draws it (Frame uniforms bound). Returns triangles drawn.
-    long long draw(double x, double z, double heading);
-
-    // A world box holding every vertex draw(x, z, heading) places: where a
-    // composite needs the terrain's depth for the vehicle. No GL: any thread.
-    WorldBox bounds(double x, double z, double heading) const;
+    // sec. 1), uploading its triangles when the pose changed. Returns true
+    // when it did (the vehicle moved since the last call).
+    bool place(double x, double z, double heading);
+    // The placed vehicle's world bounds (one box; empty before place()).
+    const std::vector<WorldBox>& bounds() const { return bounds_; }
+    // A world box holding every vertex place(x, z, heading) would place:
+    // where a composite needs the terrain's depth for the vehicle before it is
+    // placed. No GL: any thread.
+    WorldBox bounds_at(double x, double z, double heading) const;
+    // Draws the placed vehicle (Frame uniforms bound). Returns triangles drawn.
+    long long draw() const { return mesh_.draw(); }
 
 private:
     // The body's frame on the ground at (x, z): origin and axes (right, up, forward).
@@ -41,6 +49,9 @@ private:
     MeshArrays placed_; // world, reused every frame
     WorldBox model_box_; // of model_
     StreamedMesh mesh_;
+    std::vector<WorldBox> bounds_;
+    bool placed_once_ = false;
+    double px_ = 0, pz_ = 0, pheading_ = 0;
 };
 
 } // namespace overflight::gl

@@ -2,6 +2,7 @@
 #include "gl/FrameUniforms.h"
 
 #include "core/AerialPerspective.h"
+#include "core/WaterSurface.h"
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
@@ -44,6 +45,10 @@ void FrameUniforms::update(const Camera& camera, const Environment& env, const T
     } else {
         block_.air_beta = block_.air_rayleigh = block_.air_haze = glm::vec4(0.0f);
     }
+    const bool under = env.water && camera.eye.y < double(env.water_level);
+    block_.underwater = glm::vec4(under ? 1.0f : 0.0f, env.water_level, 0.0f, 0.0f);
+    block_.water_absorption = glm::vec4(kWaterAbsorption[0], kWaterAbsorption[1], kWaterAbsorption[2], 0.0f);
+    block_.water_deep = glm::vec4(water_deep_light(env), 0.0f);
     glNamedBufferSubData(ubo_.get(), 0, sizeof(FrameBlock), &block_);
 }
 

@@ -24,6 +24,9 @@ struct FrameBlock {
     glm::vec4 shadow; // ShadowCeilingTexture::uniform(), or 0: no terrain shadows
     glm::vec4 look;   // x: 1 while baked surfaces are drawn, y: 1 while the terrain is (set_terrain_pass)
     glm::vec4 imagery; // ImageryTexture::uniform(), or 0: no imagery finer than the samples
+    glm::vec4 underwater;       // x: 1 = the eye is under Environment::water's level, y: that level
+    glm::vec4 water_absorption; // rgb: kWaterAbsorption (core/WaterSurface.h)
+    glm::vec4 water_deep;       // rgb: water_deep_light()
 };
 
 class FrameUniforms {

@@ -50,6 +50,9 @@ layout(std140, binding = 0) uniform Frame {
     vec4 look;         // x: 1 = what is drawn now is baked (the terrain's colors with --lighting baked): no sun;
                        // y: 1 = what is drawn now is the terrain
     vec4 imagery;      // 1 / extent x, 1 / extent z, origin x, z of the imagery (ImageryTexture); 0: none
+    vec4 underwater;       // x: 1 = the eye is under the water, y: the water's level
+    vec4 water_absorption; // rgb: per world unit of water path
+    vec4 water_deep;       // rgb: the deep water's light
 };
 // The terrain's shadow ceiling (core/HorizonSweep.h), one texel per sample.
 layout(binding = 7) uniform sampler2D shadow_ceiling;
@@ -60,6 +63,13 @@ layout(std140, binding = 3) uniform ObjectShadow {
     vec4 object_shadow;    // x: 1 = objects cast shadows; y: depth bias
 };
 layout(binding = 8) uniform sampler2DShadow object_shadow_map;
+// The vehicle's, fitted to it alone (the same layout).
+layout(std140, binding = 4) uniform VehicleShadow {
+    mat4 vehicle_sun_proj;
+    vec4 vehicle_origin;
+    vec4 vehicle_shadow;
+};
+layout(binding = 11) uniform sampler2DShadow vehicle_shadow_map;
 // The terrain's imagery, mipmapped (core/ImageryPyramid.h), over its world rectangle.
 layout(binding = 10) uniform sampler2D imagery_texture;
 
@@ -89,12 +99,21 @@ vec3 air_sky(vec3 dir) {
     return opacity * haze_color(dot(u, sun_dir.xyz));
 }
 
+// `color` seen from the eye under the water through the part of the way to
+// `world` below the level (core/WaterSurface.h: underwater_path, underwater_color).
+vec3 under_water(vec3 color, vec3 world) {
+    float len = length(world - eye.xyz);
+    float path = world.y > underwater.y ? len * clamp((underwater.y - eye.y) / (world.y - eye.y), 0.0, 1.0) : len;
+    vec3 t = exp(-water_absorption.rgb * path);
+    return color * t + water_deep.rgb * (1.0 - t);
+}
 // GL_EXP fog with the eye distance taken as the length of the eye-space
 // position, i.e. the world distance from the eye: f = exp(-density *
-// distance); or the aerial perspective when the atmosphere is on.
+// distance); or the aerial perspective when the atmosphere is on; then,
+// with the eye under the water, the water's extinction.
 vec3 fogged(vec3 color, vec3 world) {
-    if (air_haze.a > 0.0) return aerial(color, world);
-    return mix(fog.rgb, color, exp(-fog.a * length(world - eye.xyz)));
+    color = air_haze.a > 0.0 ? aerial(color, world) : mix(fog.rgb, color, exp(-fog.a * length(world - eye.xyz)));
+    return underwater.x > 0.0 ? under_water(color, world) : color;
 }
 // How much of the sun `world` sees past the terrain. Each of the four
 // samples around it tests the point's height above the ground against its
@@ -117,13 +136,23 @@ float sun_visible(vec3 world) {
     float above = look.y > 0.0 ? 0.0 : world.y - ground;
     return mix(mix(step(t00.r, above), step(t10.r, above), f.x), mix(step(t01.r, above), step(t11.r, above), f.x), f.y);
 }
-// How much of the sun `world` sees past the objects (1 outside the map).
+// The window coordinates of `world` in a shadow map's sun view; false
+// outside the map (where nothing it holds casts a shadow).
+bool in_sun_view(mat4 sun_proj, vec3 origin, vec3 world, out vec3 q) {
+    vec4 p = sun_proj * vec4(world - origin, 1.0);
+    q = p.xyz / p.w * 0.5 + 0.5;
+    return !(any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))) || q.z <= 0.0);
+}
+// How much of the sun `world` sees past the objects and the vehicle (1
+// outside their maps).
 float object_sun_visible(vec3 world) {
-    if (object_shadow.x == 0.0) return 1.0;
-    vec4 p = object_sun_proj * vec4(world - object_origin.xyz, 1.0);
-    vec3 q = p.xyz / p.w * 0.5 + 0.5;
-    if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))) || q.z <= 0.0) return 1.0;
-    return texture(object_shadow_map, vec3(q.xy, min(q.z, 1.0) - object_shadow.y));
+    float v = 1.0;
+    vec3 q;
+    if (object_shadow.x != 0.0 && in_sun_view(object_sun_proj, object_origin.xyz, world, q))
+        v = texture(object_shadow_map, vec3(q.xy, min(q.z, 1.0) - object_shadow.y));
+    if (vehicle_shadow.x != 0.0 && in_sun_view(vehicle_sun_proj, vehicle_origin.xyz, world, q))
+        v *= texture(vehicle_shadow_map, vec3(q.xy, min(q.z, 1.0) - vehicle_shadow.y));
+    return v;
 }
 // A terrain fragment's albedo: the imagery at its world (x, z) when the
 // terrain has imagery finer than its samples (whose per-vertex colors are

@@ -14,9 +14,10 @@
 
 namespace overflight::gl {
 
-ObjectShadowMap::ObjectShadowMap()
-    : depth_(make_texture(GL_TEXTURE_2D)), fbo_(make_framebuffer()), ubo_(make_buffer()), pass_frame_(make_buffer()) {
-    glTextureStorage2D(depth_.get(), 1, GL_DEPTH_COMPONENT32F, kSize, kSize);
+ObjectShadowMap::ObjectShadowMap(GLuint unit, GLuint binding, int size)
+    : unit_(unit), binding_(binding), size_(size), depth_(make_texture(GL_TEXTURE_2D)), fbo_(make_framebuffer()),
+      ubo_(make_buffer()), pass_frame_(make_buffer()), off_ubo_(make_buffer()) {
+    glTextureStorage2D(depth_.get(), 1, GL_DEPTH_COMPONENT32F, size_, size_);
     glTextureParameteri(depth_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(depth_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(depth_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -30,6 +31,7 @@ ObjectShadowMap::ObjectShadowMap()
         throw Error("opengl", "the objects' shadow map framebuffer is incomplete");
     glNamedBufferStorage(ubo_.get(), sizeof(ObjectShadowBlock), &block_, GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferStorage(pass_frame_.get(), sizeof(FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(off_ubo_.get(), sizeof(ObjectShadowBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
 
 std::vector<WorldBox> ObjectShadowMap::reach(const std::vector<WorldBox>& objects, const glm::vec3& sun, float floor) {
@@ -45,22 +47,22 @@ std::vector<WorldBox> ObjectShadowMap::reach(const std::vector<WorldBox>& object
     return out;
 }
 
-void ObjectShadowMap::update(bool on, const glm::vec3& sun, const ObjectRenderer& objects, const FrameBlock& frame) {
-    const std::vector<WorldBox>& boxes = objects.bounds();
+bool ObjectShadowMap::begin_pass(bool on, const glm::vec3& sun, const std::vector<WorldBox>& boxes, bool changed,
+                                 const FrameBlock& frame) {
     const bool want = on && sun.y > 0 && !boxes.empty();
     if (!want) {
         if (block_.params.x != 0.0f) {
             block_.params.x = 0.0f;
             glNamedBufferSubData(ubo_.get(), 0, sizeof(ObjectShadowBlock), &block_);
         }
-        return;
+        return false;
     }
-    if (rendered_ && rendered_for_ == sun) {
+    if (rendered_ && rendered_for_ == sun && !changed) {
         if (block_.params.x == 0.0f) {
             block_.params.x = 1.0f;
             glNamedBufferSubData(ubo_.get(), 0, sizeof(ObjectShadowBlock), &block_);
         }
-        return;
+        return false;
     }
     // The sun's view: orthographic along -sun, centred on the objects' bounds.
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -82,7 +84,7 @@ void ObjectShadowMap::update(bool on, const glm::vec3& sun, const ObjectRenderer
         }
     // A texel's margin on every side, and depth from just before the nearest
     // corner to just past the farthest (the view looks down -z).
-    const glm::vec2 margin = (glm::vec2(vhi) - glm::vec2(vlo)) / float(kSize) + 0.01f;
+    const glm::vec2 margin = (glm::vec2(vhi) - glm::vec2(vlo)) / float(size_) + 0.01f;
     const float near = -vhi.z - 1.0f, far = -vlo.z + 1.0f;
     const glm::mat4 proj = glm::ortho(vlo.x - margin.x, vhi.x + margin.x, vlo.y - margin.y, vhi.y + margin.y, near, far);
     block_.sun_proj = proj * view;
@@ -102,28 +104,30 @@ void ObjectShadowMap::update(bool on, const glm::vec3& sun, const ObjectRenderer
     glNamedBufferSubData(pass_frame_.get(), 0, sizeof(FrameBlock), &pass);
     ObjectShadowBlock off = block_;
     off.params.x = 0.0f;
-    Buffer off_ubo = make_buffer();
-    glNamedBufferStorage(off_ubo.get(), sizeof(ObjectShadowBlock), &off, 0);
+    glNamedBufferSubData(off_ubo_.get(), 0, sizeof(ObjectShadowBlock), &off);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, pass_frame_.get());
-    glBindBufferBase(GL_UNIFORM_BUFFER, kBinding, off_ubo.get());
-    glBindTextureUnit(kUnit, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding_, off_ubo_.get());
+    glBindTextureUnit(unit_, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
-    glViewport(0, 0, kSize, kSize);
+    glViewport(0, 0, size_, size_);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glClearDepth(1.0);
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(2.0f, 4.0f);
-    objects.draw();
+    return true;
+}
+
+void ObjectShadowMap::end_pass(const glm::vec3& sun) {
     glDisable(GL_POLYGON_OFFSET_FILL);
     rendered_ = true;
     rendered_for_ = sun;
 }
 
 void ObjectShadowMap::bind() const {
-    glBindBufferBase(GL_UNIFORM_BUFFER, kBinding, ubo_.get());
-    glBindTextureUnit(kUnit, depth_.get());
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding_, ubo_.get());
+    glBindTextureUnit(unit_, depth_.get());
 }
 
 } // namespace overflight::gl

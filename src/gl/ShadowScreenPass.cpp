@@ -34,6 +34,19 @@ void main() {
     vec4 ndc = vec4((vec2(px) + 0.5) / image.xy * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
     vec4 e = clip_to_eye * ndc;
     vec3 world = eye.xyz + e.xyz / e.w;
+    // The ray casters' depth is their slice's, up to a slice step off the
+    // block they hit: the point is moved along its ray onto that block's top
+    // (the height of its nearest sample) when a block top of that height is there, so
+    // that a small shadow (the vehicle's) is not shifted by the step.
+    ivec2 last0 = textureSize(shadow_ceiling, 0) - 1;
+    ivec2 s0 = clamp(ivec2(floor(world.xz * shadow.y + 0.5)), ivec2(0), last0);
+    vec3 ray = world - eye.xyz;
+    if (ray.y < 0.0) {
+        float h = texelFetch(shadow_ceiling, s0, 0).g;
+        vec3 top = eye.xyz + ray * ((h - eye.y) / ray.y);
+        ivec2 s1 = clamp(ivec2(floor(top.xz * shadow.y + 0.5)), ivec2(0), last0);
+        if (texelFetch(shadow_ceiling, s1, 0).g == h) world = top;
+    }
     float visible = object_sun_visible(world);
     if (visible >= 1.0) discard;
     // The sample the ray caster painted: its normal (Terrain::sample_normal)

@@ -19,6 +19,16 @@ void main() {
     float u = gl_FragCoord.x - 0.5 * image.x;
     float v = gl_FragCoord.y - 0.5 * image.y;
     vec3 dir = view_axis.xyz + (u / image.z) * view_right.xyz + ((v + image.w) / image.z) * view_up.xyz;
+    // Under the water, unless the ray rises to the surface over the terrain
+    // (which the water pass draws there): the depths (core/WaterSurface.h).
+    if (underwater.x > 0.0) {
+        vec2 p = eye.xz + dir.xz * ((underwater.y - eye.y) / dir.y);
+        vec2 extent = vec2(grid.w - 1.0, grid.z - 1.0) * grid.x;
+        if (!(dir.y > 0.0) || any(lessThan(p, vec2(0.0))) || any(greaterThan(p, extent))) {
+            frag = vec4(water_deep.rgb, 1.0);
+            return;
+        }
+    }
     if (air_haze.a > 0.0) {
         frag = vec4(air_sky(dir), 1.0);
         return;

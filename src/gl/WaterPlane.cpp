@@ -7,8 +7,10 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -21,13 +23,14 @@ const char* const kWaterFs = R"(
 layout(binding = 5) uniform sampler2D water_heights; // world Y, texel (col, row)
 layout(binding = 6) uniform sampler2D water_colors;
 uniform vec4 water; // level, time (s), highest sample, 1 = baked
+uniform float water_texel; // world units between texels of water_heights (the cell, times the decimation)
 layout(location = 0, index = 0) out vec4 frag;
 layout(location = 0, index = 1) out vec4 weight;
 
 WATER_CONSTANTS
 
-float height_at(vec2 xz) { // Terrain::height_bilinear
-    vec2 p = xz / grid.x;
+float height_at(vec2 xz) { // Terrain::height_bilinear (of the decimated heights)
+    vec2 p = xz / water_texel;
     ivec2 last = textureSize(water_heights, 0) - 1;
     ivec2 i = clamp(ivec2(floor(p)), ivec2(0), last - 1);
     vec2 f = clamp(p - vec2(i), 0.0, 1.0);
@@ -67,7 +70,8 @@ void main() {
     float v = gl_FragCoord.y - 0.5 * image.y;
     vec3 dir = view_axis.xyz + (u / image.z) * view_right.xyz + ((v + image.w) / image.z) * view_up.xyz;
     float level = water.x;
-    if (!(dir.y < 0.0) || eye.y <= level) discard;
+    bool under = eye.y < level;
+    if (under ? !(dir.y > 0.0) : !(dir.y < 0.0)) discard;
     vec3 offset = dir * ((level - eye.y) / dir.y); // eye to the water point
     vec3 p = eye.xyz + offset;
     if (!inside(p.xz)) discard;
@@ -77,6 +81,17 @@ void main() {
     gl_FragDepth = z;
     vec3 view = normalize(dir);
     vec3 n = wave_normal(p.xz);
+    if (under) { // the surface from below, opaque: water_underside, underwater_color
+        vec3 up = refract(view, -n, kIndex);
+        vec3 c = water_deep.rgb;
+        if (up != vec3(0.0)) {
+            float f = fresnel(dot(up, n));
+            c = sky(up) * (1.0 - f) + water_deep.rgb * f;
+        }
+        frag = vec4(under_water(c, p), 1.0);
+        weight = vec4(1.0);
+        return;
+    }
     // The mirrored ray through the height field.
     vec3 r = mirrored(view, n);
     float reach = (water.z - level) / r.y + grid.x;
@@ -87,7 +102,7 @@ void main() {
         vec3 q = p + r * t;
         if (!inside(q.xz)) break;
         if (height_at(q.xz) >= q.y) {
-            ivec2 s = ivec2(floor(q.xz / grid.x + 0.5));
+            ivec2 s = ivec2(floor(q.xz / water_texel + 0.5));
             vec3 albedo = texelFetch(water_colors, s, 0).rgb;
             vec3 lit = albedo;
             if (water.w == 0.0) {
@@ -123,6 +138,8 @@ std::string water_constants() {
     char line[256];
     std::snprintf(line, sizeof line, "const float kF0 = %.9g;\n", double(kWaterF0));
     s += line;
+    std::snprintf(line, sizeof line, "const float kIndex = %.9g;\n", double(kWaterIndex));
+    s += line;
     std::snprintf(line, sizeof line, "const vec3 kAbsorption = vec3(%.9g, %.9g, %.9g);\n", double(kWaterAbsorption[0]),
                   double(kWaterAbsorption[1]), double(kWaterAbsorption[2]));
     s += line;
@@ -146,27 +163,48 @@ std::string water_constants() {
 
 } // namespace
 
+int water_decimation(int cols, int rows, int max_size) {
+    int k = 1;
+    while ((std::max(cols, rows) - 2) / k + 2 > max_size) ++k;
+    return k;
+}
+
 void WaterPlane::draw(const Environment& env, double eye_y) {
-    if (!env.water || !(eye_y > double(env.water_level)) || failed_) return;
+    if (!env.water || eye_y == double(env.water_level)) return;
     const Terrain& t = terrain_;
     if (!program_.get()) {
-        GLint max_size = 0;
-        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-        if (t.cols() > max_size || t.rows() > max_size) {
-            failed_ = true;
-            return;
-        }
+        GLint max_size = max_size_;
+        if (max_size <= 0) glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+        // Texel (i, j) holds the highest sample within k samples of (i k, j k)
+        // (for k > 1; else that sample):
+        // between two texels the bilinear heights then never pass below the
+        // terrain's, so a mirrored ray hits no later than through the full
+        // heights, at most k - 1 samples early.
+        decimation_ = water_decimation(t.cols(), t.rows(), max_size);
+        const int k = decimation_;
+        const int w = (t.cols() - 2) / k + 2, h = (t.rows() - 2) / k + 2;
         std::string fs = kWaterFs;
         fs.replace(fs.find("WATER_CONSTANTS"), 15, water_constants());
         program_ = make_program("water", kFullScreenVs, fs.c_str());
         vao_ = make_vertex_array();
-        std::vector<float> heights(std::size_t(t.rows()) * std::size_t(t.cols()));
-        tbb::parallel_for(0, t.rows(), [&](int r) {
-            for (int c = 0; c < t.cols(); ++c) heights[t.index(r, c)] = t.sample_height(r, c);
+        std::vector<float> heights(std::size_t(w) * std::size_t(h));
+        std::vector<Rgb8> colors(heights.size());
+        const int pad = k > 1 ? k : 0;
+        tbb::parallel_for(0, h, [&](int r) {
+            const int r0 = std::min(std::max(r * k - pad, 0), t.rows() - 1), r1 = std::min(r * k + pad, t.rows() - 1);
+            for (int c = 0; c < w; ++c) {
+                const int c0 = std::min(std::max(c * k - pad, 0), t.cols() - 1), c1 = std::min(c * k + pad, t.cols() - 1);
+                float top = -std::numeric_limits<float>::max();
+                for (int i = r0; i <= r1; ++i)
+                    for (int j = c0; j <= c1; ++j) top = std::max(top, t.sample_height(i, j));
+                const std::size_t at = std::size_t(r) * std::size_t(w) + std::size_t(c);
+                heights[at] = top;
+                colors[at] = t.colors()[t.index(std::min(r * k, t.rows() - 1), std::min(c * k, t.cols() - 1))];
+            }
         });
         auto texture = [&](GLenum format) {
             Texture tex = make_texture(GL_TEXTURE_2D);
-            glTextureStorage2D(tex.get(), 1, format, t.cols(), t.rows());
+            glTextureStorage2D(tex.get(), 1, format, w, h);
             glTextureParameteri(tex.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(tex.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
             glTextureParameteri(tex.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -176,13 +214,14 @@ void WaterPlane::draw(const Environment& env, double eye_y) {
         heights_ = texture(GL_R32F);
         colors_ = texture(GL_RGB8);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        glTextureSubImage2D(heights_.get(), 0, 0, 0, t.cols(), t.rows(), GL_RED, GL_FLOAT, heights.data());
-        glTextureSubImage2D(colors_.get(), 0, 0, 0, t.cols(), t.rows(), GL_RGB, GL_UNSIGNED_BYTE, t.colors().data());
+        glTextureSubImage2D(heights_.get(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, heights.data());
+        glTextureSubImage2D(colors_.get(), 0, 0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, colors.data());
         glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     }
     glUseProgram(program_.get());
     glUniform4f(glGetUniformLocation(program_.get(), "water"), env.water_level, float(env.water_time),
                 t.max_height(), env.baked ? 1.0f : 0.0f);
+    glUniform1f(glGetUniformLocation(program_.get(), "water_texel"), t.h_scale() * float(decimation_));
     glBindTextureUnit(5, heights_.get());
     glBindTextureUnit(6, colors_.get());
     glEnable(GL_BLEND);

@@ -50,7 +50,8 @@ void WaterPass::set_colors(const std::vector<Rgb8>* colors, const Environment& e
 
 long long WaterPass::apply(const Camera& camera, const Environment& env, SurfaceModel surface, ColorImage& color,
                            DepthImage& depth) const {
-    if (!env.water || !(camera.eye.y > double(env.water_level))) return 0;
+    if (!env.water || camera.eye.y == double(env.water_level)) return 0;
+    if (camera.eye.y < double(env.water_level)) return apply_under(camera, env, surface, color, depth);
     const Terrain& t = terrain_;
     RayMarcher marcher(t, env);
     marcher.set_colors(colors_);
@@ -102,6 +103,71 @@ long long WaterPass::apply(const Camera& camera, const Environment& env, Surface
         flooded += n;
     });
     return flooded.load();
+}
+
+long long WaterPass::apply_under(const Camera& camera, const Environment& env, SurfaceModel surface_model,
+                                 ColorImage& color, DepthImage& depth) const {
+    const Terrain& t = terrain_;
+    RayMarcher marcher(t, env);
+    const RayMarcher::Frame frame = marcher.frame(camera);
+    const double level = env.water_level;
+    const Unprojection pixels(frame.inverse_view_projection, camera.width);
+    const glm::dvec4 m2 = frame.inverse_view_projection[2], m3 = frame.inverse_view_projection[3];
+    const Rgb8 deep = to_rgb8(glm::clamp(water_deep_light(env), 0.0f, 1.0f));
+    std::atomic<long long> surface{0};
+    tbb::parallel_for(0, camera.height, [&](int row) {
+        long long n = 0;
+        const glm::dvec4 row_term = frame.inverse_view_projection[1] * (1.0 - (row + 0.5) / camera.height * 2.0);
+        for (int col = 0; col < camera.width; ++col) {
+            const glm::dvec4 ray = pixels.columns[std::size_t(col)] + row_term;
+            const glm::dvec4 an = ray + pixels.near_plane, bn = ray + pixels.far_plane;
+            const glm::dvec3 a = glm::dvec3(an) / an.w, b = glm::dvec3(bn) / bn.w;
+            const glm::dvec3 d = b - a;
+            float& behind = depth.at(col, row);
+            Rgb8& pixel = color.at(col, row);
+            if (d.y > 0.0) {
+                // The surface from below, where the ray rises to it before the terrain.
+                const double s = (level - a.y) / d.y;
+                const glm::dvec3 p = a + s * d;
+                if (s >= 0.0 && s <= 1.0 && t.contains(float(p.x), float(p.z))) {
+                    const glm::dvec4 clip = frame.view_projection * glm::dvec4(p, 1.0);
+                    const float z = float(std::clamp((clip.z / clip.w + 1.0) * 0.5, 0.0, 1.0));
+                    if (z < behind) {
+                        const glm::vec3 view(glm::normalize(d));
+                        const glm::vec3 normal = water_normal(float(p.x), float(p.z), env.water_time, t.h_scale());
+                        const glm::dvec3 up(water_refract_up(view, normal));
+                        const Rgb8 sky = env.atmosphere ? aerial_sky_rgb(frame.air, up) : sky_color(env, up);
+                        const glm::vec3 c = water_underside(env, view, normal, unit_rgb(sky));
+                        pixel = to_rgb8(glm::clamp(underwater_color(env, c, float(glm::length(p - camera.eye))), 0.0f, 1.0f));
+                        behind = z;
+                        ++n;
+                        continue;
+                    }
+                }
+            }
+            if (behind < 1.0f) {
+                // The terrain, seen through the water up to the level.
+                const glm::dvec4 w = ray + m2 * (double(behind) * 2.0 - 1.0) + m3;
+                glm::dvec3 q = glm::dvec3(w) / w.w;
+                // The casts' depth is their slice's, up to a slice step off the
+                // surface: the point goes along its ray onto the surface's
+                // height there (for blocks, when a block top of that height is there).
+                const glm::dvec3 v = q - camera.eye;
+                if (v.y < 0.0) {
+                    const bool blocks = surface_model == SurfaceModel::Blocks;
+                    const double h = blocks ? t.height_nearest(float(q.x), float(q.z)) : t.height_bilinear(float(q.x), float(q.z));
+                    const glm::dvec3 on = camera.eye + v * ((h - camera.eye.y) / v.y);
+                    if (!blocks || double(t.height_nearest(float(on.x), float(on.z))) == h) q = on;
+                }
+                const double path = underwater_path(camera.eye, q, level);
+                pixel = to_rgb8(glm::clamp(underwater_color(env, unit_rgb(pixel), float(path)), 0.0f, 1.0f));
+            } else {
+                pixel = deep; // no terrain, no surface over the terrain: the depths
+            }
+        }
+        surface += n;
+    });
+    return surface.load();
 }
 
 } // namespace overflight

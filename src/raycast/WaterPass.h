@@ -21,7 +21,10 @@
 //     water, fogged), the water path from the depth under the point
 //     (water_path of the bilinear surface);
 //   - water_light, fogged from the eye like any terrain, over the bottom.
-// The eye below the level sees no water (the plane is drawn from above only).
+// The eye below the level sees the water from under it (core/WaterSurface.h):
+// the surface from below where a rising ray meets the plane before the
+// terrain (the plane's depth), and everything else dimmed by the water's
+// extinction over its path under the level.
 // Pixels elsewhere are not touched: without water the images are the caster's.
 //
 // Cost: one unprojection per pixel, and per water pixel one march of the
@@ -57,11 +60,15 @@ public:
     void set_skipping(bool on) { skipping_ = on; }
 
     // Floods `color`/`depth` (the caster's images for `camera`, its size)
-    // to env.water_level when env.water is on; returns the water pixels.
+    // to env.water_level when env.water is on; returns the water pixels
+    // (with the eye under the level, those of the surface seen from below).
     long long apply(const Camera& camera, const Environment& env, SurfaceModel surface, ColorImage& color,
                     DepthImage& depth) const;
 
 private:
+    long long apply_under(const Camera& camera, const Environment& env, SurfaceModel surface, ColorImage& color,
+                          DepthImage& depth) const;
+
     const Terrain& terrain_;
     const std::vector<Rgb8>* colors_ = nullptr;
     TerrainLighting albedo_lighting_{terrain_}; // used over imagery only

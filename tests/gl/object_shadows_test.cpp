@@ -39,12 +39,13 @@ DataSet box_scene() {
     return d;
 }
 
-ColorImage render(const DataSet& d, gl::HeadlessRenderer& r, const char* method, const Camera& cam, const Environment& env) {
+ColorImage render(const DataSet& d, gl::HeadlessRenderer& r, const char* method, const Camera& cam, const Environment& env,
+                  const gl::CompositeOptions& options = {}) {
     const MethodSettings settings;
     const std::unique_ptr<TerrainMethod> m = find_terrain_method(method)->create({d.terrain, settings, {}});
     MethodStats stats;
     ColorImage color;
-    r.render(m->produce({cam, env, std::nullopt}, stats), cam, env, {}, color, nullptr);
+    r.render(m->produce({cam, env, std::nullopt}, stats), cam, env, options, color, nullptr);
     return color;
 }
 
@@ -123,3 +124,50 @@ TEST(ObjectShadows, PartialDepthLoadDrawsTheSamePixelsAsTheWholeDepth) {
     ASSERT_TRUE(p.in_front);
     EXPECT_NE(partial.at(int(p.col), int(p.row)), out.color->at(int(p.col), int(p.row)));
 }
+
+namespace {
+
+// The vehicle (gl/FlightVehicle: skirt 3 wide from 0.3 to 1.0 above the
+// ground, body to 1.7, cabin to 2.3) at (24, 32) heading north, on the same
+// flat ground with no objects, under the same western sun at 45 degrees: the
+// skirt's shadow covers X in [22.8, 26.5], Z in [29.5, 34.5], the body's
+// reaches X = 26.975 over Z in [29.75, 34.25].
+void expect_vehicle_shadow(const char* method) {
+    DataSet d = box_scene();
+    d.scene.objects.clear();
+    gl::HeadlessRenderer r(d.terrain, d.scene);
+    Camera cam; // looking north and down at the vehicle from the south-east
+    cam.eye = {32, 40, 72};
+    cam.heading = 180;
+    cam.pitch = -45;
+    cam.width = 640;
+    cam.height = 480;
+    cam.near = 1;
+    cam.far = 300;
+    Environment with = d.environment, without = d.environment;
+    with.shadows = true;
+    gl::CompositeOptions options;
+    options.vehicle = gl::VehiclePose{24, 32, 0};
+    const ColorImage on = render(d, r, method, cam, with, options), off = render(d, r, method, cam, without, options);
+    const auto at = [&](const ColorImage& img, double x, double z) {
+        const auto p = cam.project({x, 0, z});
+        EXPECT_TRUE(p.col >= 0 && p.col < cam.width && p.row >= 0 && p.row < cam.height) << x << "," << z;
+        return img.at(std::clamp(int(p.col), 0, cam.width - 1), std::clamp(int(p.row), 0, cam.height - 1));
+    };
+    const glm::vec3 ambient = d.environment.ambient * 200.0f;
+    for (const auto& [x, z] : {std::pair{26.2, 32.0}, {26.0, 30.5}, {26.0, 33.5}, {26.6, 31.5}}) {
+        const Rgb8 c = at(on, x, z);
+        EXPECT_NEAR(c.r, ambient.r, 3.0) << method << " at " << x << "," << z;
+        EXPECT_NEAR(c.g, ambient.g, 3.0) << method << " at " << x << "," << z;
+        EXPECT_NEAR(c.b, ambient.b, 3.0) << method << " at " << x << "," << z;
+        EXPECT_GT(at(off, x, z).r, ambient.r + 60) << method << " at " << x << "," << z;
+    }
+    for (const auto& [x, z] : {std::pair{28.0, 32.0}, {24.0, 37.0}, {24.0, 27.0}, {30.0, 36.0}})
+        EXPECT_EQ(at(on, x, z), at(off, x, z)) << method << " at " << x << "," << z;
+}
+
+} // namespace
+
+TEST(ObjectShadows, VehicleOnFlatGroundInTheRayCaster) { expect_vehicle_shadow("voxel"); }
+
+TEST(ObjectShadows, VehicleOnFlatGroundInTheMesh) { expect_vehicle_shadow("mesh"); }

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 
 using namespace overflight::test;
@@ -76,6 +77,10 @@ TEST(RenderVoxelCli, BadCameraInputIsOneLineAndLeavesNothing) {
         {"--sun 400,10", "--sun"},
         {"--sun 10,95", "--sun"},
         {"--sun east,10", "--sun"},
+        {"--time 25:00", "--time"},
+        {"--time 9", "--time"},
+        {"--time 12:60", "--time"},
+        {"--time 12:00 --sun 180,60", "--time"},
         {"--lighting flat", "--lighting"},
         {"--water-level 99999", "--water-level"},
         {"--water-level deep", "--water-level"},
@@ -99,6 +104,25 @@ TEST(RenderVoxelCli, SunBelowTheHorizonIsAmbientLight) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.err, "overflight: --sun: warning: elevation -5 is at or below the horizon: ambient light only\n");
     EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+// --time HH:MM puts the sun where fly's time-of-day keys do: at noon due
+// south at 60 degrees, the same picture as --sun 180,60; another hour another.
+TEST(RenderVoxelCli, TimeOfDaySetsTheSun) {
+    ScratchDir dir;
+    const std::string base = "render demo --demo-size 33 --size 32x16 --shadows -o '";
+    const auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    ASSERT_EQ(run_overflight(base + dir / "noon.png" + "' --time 12:00").exit_code, 0);
+    ASSERT_EQ(run_overflight(base + dir / "sun.png" + "' --sun 180,60").exit_code, 0);
+    ASSERT_EQ(run_overflight(base + dir / "morning.png" + "' --time 07:30").exit_code, 0);
+    EXPECT_EQ(bytes(dir / "noon.png"), bytes(dir / "sun.png"));
+    EXPECT_NE(bytes(dir / "noon.png"), bytes(dir / "morning.png"));
+    const RunResult night = run_overflight(base + dir / "night.png" + "' --time 22:15");
+    EXPECT_EQ(night.exit_code, 0) << night.err;
+    EXPECT_EQ(night.err, "overflight: --time: warning: the sun is at or below the horizon at 22:15: ambient light only\n");
 }
 
 TEST(RenderVoxelCli, LiteralNeedsShear) {
