@@ -15,6 +15,22 @@
 // "overflight: ". The GIL is released while loading, rendering and
 // simulating; one terrain renders one view at a time (its GL context and its
 // cached method are shared), different terrains render in parallel.
+//
+// What a call adds to the render `bench` times (the render session's, the
+// same code) is kept to a few microseconds: the view's keywords are parsed by
+// the command line's parser once per distinct view (view_args), and the
+// arrays are the frame's own buffers, swapped out of the session or the
+// method (RenderSession::take_images) and given back for later frames when
+// NumPy drops them (SpareImages), so no pixel is copied after the renderer's
+// read-back.
+//
+// The GL rule: a view makes the terrain's EGL context current on the calling
+// thread and releases it before it leaves the terrain's lock, so whichever
+// Python thread renders next can take it (EGL lets a context be current on
+// one thread only) and a thread that ends holds none. Keeping it current
+// between calls saved nothing measurable (a 16x16 voxel+objects view, 1000
+// calls: 0.57 ms per call releasing it, 0.60 ms keeping it, `bench` 0.55 to
+// 0.58 ms, load average 12 on 2 cores), so the simple rule stays.
 #include "CameraOptions.h"
 #include "LookOptions.h"
 #include "OptionErrors.h"
