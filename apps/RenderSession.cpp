@@ -7,6 +7,7 @@
 #include "io/TileDirectory.h"
 
 #include <string_view>
+#include <utility>
 
 namespace overflight::app {
 
@@ -96,6 +97,19 @@ void RenderSession::render(const MethodEntry& row, TerrainMethod& method, const 
     gl_->render(out, camera, environment_, options, color_, want_depth ? &depth_ : nullptr, &view.gl);
     view.color = &color_;
     view.depth = want_depth ? &depth_ : nullptr;
+}
+
+void RenderSession::take_images(TerrainMethod& method, RenderedView& view, ColorImage& color, DepthImage* depth) {
+    if (!view.depth) depth = nullptr;
+    if (view.composited) {
+        std::swap(color, color_);
+        if (depth) std::swap(*depth, depth_);
+    } else if (!method.swap_images(color, depth)) {
+        color = *view.color;
+        if (depth) *depth = *view.depth;
+    }
+    view.color = nullptr;
+    view.depth = nullptr;
 }
 
 namespace {

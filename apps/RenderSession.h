@@ -72,6 +72,15 @@ public:
     // back when `want_depth`. The view's images live until the next call.
     void render(const MethodEntry& row, TerrainMethod& method, const Camera& camera, bool want_depth,
                 RenderedView& view);
+    // Hands the images of `view`, the last render() with `method`, to the
+    // caller without copying them where it can: swaps their buffers with
+    // `color` and, when the view read the depth back and `depth` is not null,
+    // with `*depth` (a read-back into the session's images, or the method's
+    // own images if it lends them, TerrainMethod::swap_images); else copies.
+    // What the session or the method receives may hold anything of any size:
+    // the next render() draws over it. `view`'s image pointers are invalid
+    // afterwards.
+    void take_images(TerrainMethod& method, RenderedView& view, ColorImage& color, DepthImage* depth);
     // Makes the GL renderer's context (if one was created) current on the
     // calling thread, as the session's destruction needs when another thread rendered last.
     void make_gl_current() {

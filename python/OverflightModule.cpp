@@ -15,6 +15,22 @@
 // "overflight: ". The GIL is released while loading, rendering and
 // simulating; one terrain renders one view at a time (its GL context and its
 // cached method are shared), different terrains render in parallel.
+//
+// What a call adds to the render `bench` times (the render session's, the
+// same code) is kept to a few microseconds: the view's keywords are parsed by
+// the command line's parser once per distinct view (view_args), and the
+// arrays are the frame's own buffers, swapped out of the session or the
+// method (RenderSession::take_images) and given back for later frames when
+// NumPy drops them (SpareImages), so no pixel is copied after the renderer's
+// read-back.
+//
+// The GL rule: a view makes the terrain's EGL context current on the calling
+// thread and releases it before it leaves the terrain's lock, so whichever
+// Python thread renders next can take it (EGL lets a context be current on
+// one thread only) and a thread that ends holds none. Keeping it current
+// between calls saved nothing measurable (a 16x16 voxel+objects view, 1000
+// calls: 0.57 ms per call releasing it, 0.60 ms keeping it, `bench` 0.55 to
+// 0.58 ms, load average 12 on 2 cores), so the simple rule stays.
 #include "CameraOptions.h"
 #include "LookOptions.h"
 #include "OptionErrors.h"
@@ -39,6 +55,8 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace py = pybind11;
@@ -47,13 +65,44 @@ namespace overflight::python {
 
 namespace {
 
+// Image buffers of a terrain's frames that NumPy no longer holds, handed to
+// the session for its next frames: a loop of views then renders into warm
+// memory instead of faulting in a fresh buffer each frame. At most kKeep of
+// each kind are kept (a loop holding the previous frame while the next is
+// drawn cycles through three buffers: the session's, the previous and the
+// returned one).
+struct SpareImages {
+    static constexpr std::size_t kKeep = 2;
+    std::mutex mutex;
+    std::vector<ColorImage> color;
+    std::vector<DepthImage> depth;
+
+    template <class T>
+    static Image2D<T> take(std::mutex& m, std::vector<Image2D<T>>& from) {
+        std::lock_guard lock(m);
+        if (from.empty()) return {};
+        Image2D<T> image = std::move(from.back());
+        from.pop_back();
+        return image;
+    }
+    template <class T>
+    static void give(std::mutex& m, std::vector<Image2D<T>>& to, Image2D<T>&& image) {
+        std::lock_guard lock(m);
+        if (to.size() < kKeep) to.push_back(std::move(image));
+    }
+    ColorImage take_color() { return take(mutex, color); }
+    DepthImage take_depth() { return take(mutex, depth); }
+    void give_back(ColorImage&& image) { give(mutex, color, std::move(image)); }
+    void give_back(DepthImage&& image) { give(mutex, depth, std::move(image)); }
+};
+
 // A terrain with the session that renders it: the last method used stays
 // built, so that a loop of views pays for it once (as `bench` does).
 struct TerrainHandle {
     DataSet data;
     std::string tile_dir; // a tile directory's path (quadtree reads its tiles)
     std::mutex mutex;     // one view at a time: the session's GL context and method
-    std::string session_key;
+    std::string session_method, session_options; // what the session was built for (ViewArgs::methods_key)
     std::unique_ptr<app::RenderSession> session;
     const MethodEntry* row = nullptr;
     std::unique_ptr<TerrainMethod> method;
@@ -61,6 +110,8 @@ struct TerrainHandle {
     // skips make_camera, whose default view scans the terrain's heights.
     std::string camera_key;
     Camera camera;
+    // Shared with the arrays lent to NumPy, which may outlive the terrain.
+    std::shared_ptr<SpareImages> spares = std::make_shared<SpareImages>();
 
     // Destroys the session. Views release the GL context after drawing
     // (ReleaseGlContext): the GL objects are deleted in it, so it is made
@@ -69,7 +120,7 @@ struct TerrainHandle {
         if (session) session->make_gl_current();
         method.reset();
         session.reset();
-        session_key.clear();
+        session_method.clear();
     }
 
     ~TerrainHandle() {
@@ -140,40 +191,82 @@ void set_camera_source(const py::object& camera, app::CameraArgs& args) {
     args.camera_file = py::str(py::module_::import("os").attr("fspath")(camera));
 }
 
-// The options of a view, parsed as `render` parses them.
+std::string methods_key(const app::MethodOptions& m) {
+    return m.surface + "|" + m.tilt_method + "|" + std::to_string(m.lod) + "|" + std::to_string(m.near_step) + "|" +
+           std::to_string(m.triangles) + "|" + std::to_string(m.error_px) + "|" + std::to_string(m.cache_mib) + "|" +
+           m.scene;
+}
+
+// The options of a view, parsed as `render` parses them. Immutable once
+// built: views are cached by their arguments (view_args) and shared.
 struct ViewArgs {
     app::CameraArgs camera;
     app::MethodOptions methods;
     app::LookArgs looks;
     std::string save_camera;
 
-    std::string key; // the arguments as text; empty for a camera file (read each time)
+    std::string key;         // the arguments as text; empty for a camera file (read each time)
+    std::string methods_key; // what selects the session besides the method (methods_key())
 
-    ViewArgs(const py::object& size, const py::object& camera_source, const py::dict& view) {
+    ViewArgs(const std::vector<std::string>& args, std::string size, app::CameraArgs source) : camera(std::move(source)) {
         CLI::App app{"overflight.render"};
         app::add_camera_options(app, camera);
         app::add_method_options(app, methods);
         app::add_look_options(app, looks);
         app.add_option("--save-camera", save_camera);
-        const std::vector<std::string> args = arguments_of(view);
         parse(app, args);
-        camera.size = size_text(size);
-        set_camera_source(camera_source, camera);
+        camera.size = std::move(size);
         if (camera.camera_file.empty()) {
             key = camera.size + "\n" + camera.camera_text;
             for (const std::string& a : args) key += "\n" + a;
         }
+        methods_key = python::methods_key(methods);
     }
 
     // The camera for `data` (render's default size 1280x720).
     Camera make(const DataSet& data) const { return app::make_camera(camera, data, 1280, 720); }
 };
+using View = std::shared_ptr<const ViewArgs>;
 
-// What a render hands back to Python: owned buffers, moved into NumPy arrays.
+// The parsed view of render()'s arguments. Building the option parser and
+// parsing costs more than a small frame, so a loop over a few views parses
+// each once: the parsed views are kept by their arguments' text (at most
+// kKeep of them; all dropped when full). A camera file is still read at
+// every call (ViewArgs::make).
+View view_args(const py::object& size, const py::object& camera_source, const py::dict& view) {
+    static constexpr std::size_t kKeep = 64;
+    static std::mutex mutex;
+    static std::unordered_map<std::string, View> parsed;
+    const std::vector<std::string> args = arguments_of(view);
+    std::string size_arg = size_text(size);
+    app::CameraArgs source;
+    set_camera_source(camera_source, source);
+    std::string key = size_arg + "\n" + source.camera_file + "\n" + source.camera_text;
+    for (const std::string& a : args) key += "\n" + a;
+    {
+        std::lock_guard lock(mutex);
+        if (const auto it = parsed.find(key); it != parsed.end()) return it->second;
+    }
+    auto v = std::make_shared<const ViewArgs>(args, std::move(size_arg), std::move(source));
+    std::lock_guard lock(mutex);
+    if (parsed.size() >= kKeep) parsed.clear();
+    parsed.emplace(std::move(key), v);
+    return v;
+}
+
+// A frame's images, handed to NumPy without a copy (array_of).
 struct Frame {
-    int width = 0, height = 0;
-    std::unique_ptr<std::uint8_t[]> color; // not zeroed first: it is copied into at once
-    std::vector<float> depth;
+    ColorImage color;
+    DepthImage depth; // empty unless asked for
+};
+
+// An image lent to NumPy: its buffer is the array's memory; when the array
+// dies, the buffer goes back to its terrain's spares.
+template <class T>
+struct LentImage {
+    Image2D<T> image;
+    std::shared_ptr<SpareImages> home;
+    ~LentImage() { home->give_back(std::move(image)); }
 };
 
 template <class T>
@@ -183,10 +276,13 @@ py::array_t<T> array_of(std::vector<T>&& v, std::vector<py::ssize_t> shape) {
     return py::array_t<T>(shape, owned->data(), free_when_done);
 }
 
-py::array_t<std::uint8_t> array_of(std::unique_ptr<std::uint8_t[]>&& bytes, std::vector<py::ssize_t> shape) {
-    std::uint8_t* owned = bytes.release();
-    py::capsule free_when_done(owned, [](void* p) { delete[] static_cast<std::uint8_t*>(p); });
-    return py::array_t<std::uint8_t>(shape, owned, free_when_done);
+// `image` as an array of `shape` (rows, cols[, channels]) of its own memory.
+template <class E, class T>
+py::array_t<E> array_of(Image2D<T>&& image, const std::shared_ptr<SpareImages>& home, std::vector<py::ssize_t> shape) {
+    static_assert(sizeof(T) % sizeof(E) == 0 && alignof(T) >= alignof(E));
+    auto* lent = new LentImage<T>{std::move(image), home};
+    py::capsule give_back(lent, [](void* p) { delete static_cast<LentImage<T>*>(p); });
+    return py::array_t<E>(shape, reinterpret_cast<const E*>(lent->image.pixels.data()), give_back);
 }
 
 // Leaves no EGL context current on this thread when the scope ends, so that
@@ -198,13 +294,9 @@ struct ReleaseGlContext {
     }
 };
 
-std::string session_key(const std::string& method, const app::MethodOptions& m) {
-    return method + "|" + m.surface + "|" + m.tilt_method + "|" + std::to_string(m.lod) + "|" +
-           std::to_string(m.near_step) + "|" + std::to_string(m.triangles) + "|" + std::to_string(m.error_px) + "|" +
-           std::to_string(m.cache_mib) + "|" + m.scene;
-}
-
 Frame render_view(TerrainHandle& t, const std::string& method_name, const ViewArgs& view, bool want_depth) {
+    // The spare buffers, taken before the lock (their own lock is short).
+    Frame f{t.spares->take_color(), want_depth ? t.spares->take_depth() : DepthImage{}};
     std::lock_guard lock(t.mutex);
     const ReleaseGlContext release; // before the lock is left
     if (view.key.empty() || view.key != t.camera_key) {
@@ -213,8 +305,7 @@ Frame render_view(TerrainHandle& t, const std::string& method_name, const ViewAr
         t.camera_key = view.key;
     }
     const Camera camera = t.camera;
-    const std::string key = session_key(method_name, view.methods);
-    if (key != t.session_key || !t.session) {
+    if (!t.session || method_name != t.session_method || view.methods_key != t.session_options) {
         const MethodEntry* row = find_terrain_method(method_name);
         if (!row) throw Error("--method", "unknown method '" + method_name + "' (known: " + terrain_method_names() + ")");
         t.drop_session();
@@ -223,22 +314,17 @@ Frame render_view(TerrainHandle& t, const std::string& method_name, const ViewAr
         if (method_name == "voxel" && t.session->has_objects()) row = find_terrain_method("voxel+objects");
         t.row = row;
         t.method = t.session->create(*row);
-        t.session_key = key;
+        t.session_method = method_name;
+        t.session_options = view.methods_key;
     }
     t.session->set_environment(app::with_looks(view.looks, t.data.environment));
     app::RenderedView rendered;
     t.session->render(*t.row, *t.method, camera, want_depth, rendered);
     if (!view.save_camera.empty())
         write_camera_file(view.save_camera, camera, app::camera_map_of(camera, t.data));
-    // One copy out of the session's reused buffers, into memory NumPy owns.
-    Frame f;
-    f.width = camera.width;
-    f.height = camera.height;
-    const ColorImage& c = *rendered.color;
-    static_assert(sizeof(Rgb8) == 3);
-    f.color.reset(new std::uint8_t[c.pixels.size() * 3]);
-    std::memcpy(f.color.get(), c.pixels.data(), c.pixels.size() * 3);
-    if (want_depth) f.depth = rendered.depth->pixels;
+    // The frame's own buffers, swapped for the spares (no copy where the
+    // session or the method can lend them).
+    t.session->take_images(*t.method, rendered, f.color, want_depth ? &f.depth : nullptr);
     return f;
 }
 
@@ -306,24 +392,24 @@ Handle from_array(const py::array_t<float, py::array::c_style | py::array::force
 
 py::tuple render(const Handle& t, const std::string& method, const py::object& size, const py::object& camera,
                  bool depth, const py::kwargs& view) {
-    const ViewArgs args(size, camera, view);
+    const View args = view_args(size, camera, view);
     Frame f;
     {
         py::gil_scoped_release release;
-        f = render_view(*t, method, args, depth);
+        f = render_view(*t, method, *args, depth);
     }
-    const py::ssize_t h = f.height, w = f.width;
+    const py::ssize_t h = f.color.height, w = f.color.width;
     py::object depth_array = py::none();
-    if (depth) depth_array = array_of(std::move(f.depth), {h, w});
-    return py::make_tuple(array_of(std::move(f.color), {h, w, 3}), depth_array);
+    if (depth) depth_array = array_of<float>(std::move(f.depth), t->spares, {h, w});
+    return py::make_tuple(array_of<std::uint8_t>(std::move(f.color), t->spares, {h, w, 3}), depth_array);
 }
 
 py::dict camera_dict(const Handle& t, const py::object& size, const py::object& camera, const py::kwargs& view) {
-    const ViewArgs args(size, camera, view);
+    const View args = view_args(size, camera, view);
     std::string text;
     {
         py::gil_scoped_release release;
-        const Camera c = args.make(t->data);
+        const Camera c = args->make(t->data);
         text = camera_file_text(c, app::camera_map_of(c, t->data));
     }
     return py::module_::import("json").attr("loads")(text);

@@ -91,6 +91,14 @@ public:
     // Produces the frame for view.camera; fills `stats` (cleared first).
     // Throws Error("camera", ...) for an invalid camera.
     virtual MethodOutput produce(const MethodView& view, MethodStats& stats) = 0;
+    // Images methods that render every pixel of their images each frame may
+    // lend them: swaps the color image of the last produce() with `color`, and
+    // the depth image with `*depth` when `depth` is not null, so that a caller
+    // keeps the frame without copying it (the Python module hands it to NumPy).
+    // What the method receives may hold anything of any size: the next
+    // produce() renders over it. Returns false, swapping nothing, when the
+    // method cannot (the default): the caller copies out of MethodOutput.
+    virtual bool swap_images(ColorImage& /*color*/, DepthImage* /*depth*/) { return false; }
     // The level-of-detail knob, multiplied by `factor` (> 1: finer: a larger
     // triangle budget or a smaller screen-space error). No-op without one.
     virtual void scale_detail(double /*factor*/) {}

@@ -11,6 +11,7 @@
 #include "raycast/WaterPass.h"
 
 #include <chrono>
+#include <utility>
 
 namespace overflight {
 
@@ -47,6 +48,13 @@ public:
             stats.add_step_since("water", tw);
         }
         return MethodOutput::images(color_, depth_);
+    }
+    // The caster writes every pixel of both images (sky included), and resizes
+    // them to the camera's size first.
+    bool swap_images(ColorImage& color, DepthImage* depth) override {
+        std::swap(color, color_);
+        if (depth) std::swap(*depth, depth_);
+        return true;
     }
 
 private:
