@@ -29,6 +29,11 @@ std::uint8_t channel(std::uint8_t albedo, float light) {
 
 } // namespace
 
+namespace {
+void light_samples(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
+                   const std::uint8_t* mask, std::vector<Rgb8>& out, LightOutput output);
+} // namespace
+
 glm::vec3 sun_direction(double azimuth_deg, double elevation_deg) {
     const double az = glm::radians(azimuth_deg), el = glm::radians(elevation_deg);
     return glm::vec3(float(std::sin(az) * std::cos(el)), float(std::sin(el)), float(-std::cos(az) * std::cos(el)));
@@ -68,6 +73,18 @@ glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit) {
 
 void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
                   std::vector<Rgb8>& out, LightOutput output) {
+    light_samples(t, normals, env, shadow, nullptr, out, output);
+}
+
+void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env,
+                  const std::vector<std::uint8_t>& shadow_mask, std::vector<Rgb8>& out, LightOutput output) {
+    light_samples(t, normals, env, nullptr, shadow_mask.data(), out, output);
+}
+
+namespace {
+
+void light_samples(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
+                   const std::uint8_t* mask, std::vector<Rgb8>& out, LightOutput output) {
     const bool light_only = output == LightOutput::Light;
     out.resize(t.colors().size());
     const glm::vec3 sun = unit_sun(env);
@@ -93,6 +110,9 @@ void light_colors(const Terrain& t, const PackedNormals& normals, const Environm
         if (shadow) {
             const float* ceiling = shadow->ceiling.data() + i0;
             for (int col = 0; col < cols; ++col) L[col] = vs * float(raw[col]) + y0 < ceiling[col] ? 0.0f : L[col];
+        } else if (mask) {
+            const std::uint8_t* m = mask + i0;
+            for (int col = 0; col < cols; ++col) L[col] = m[col] ? 0.0f : L[col];
         }
         // The light per channel, then Rgb8 as bytes: plain loops, which vectorize.
         static_assert(sizeof(Rgb8) == 3);
@@ -116,6 +136,8 @@ void light_colors(const Terrain& t, const PackedNormals& normals, const Environm
     });
 }
 
+} // namespace
+
 const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     if (valid_ && same_light(env, lit_for_)) return baked_ ? nullptr : &colors_;
     valid_ = true;
@@ -128,15 +150,16 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
         return &colors_;
     }
     if (baked_) return nullptr;
-    const ShadowCeiling* shadow = nullptr;
+    if (normals_.packed.empty()) normals_ = pack_normals(terrain_);
     if (env.shadows) {
         const glm::vec3 sun = unit_sun(env);
-        if (!shadow_valid_ || shadow_.sun_dir != sun) sweep_shadow_ceiling(terrain_, sun, shadow_);
+        if (!shadow_valid_ || shadow_for_ != sun) sweep_shadow_mask(terrain_, sun, shadow_);
         shadow_valid_ = true;
-        shadow = &shadow_;
+        shadow_for_ = sun;
+        light_colors(terrain_, normals_, env, shadow_, colors_, output_);
+    } else {
+        light_colors(terrain_, normals_, env, nullptr, colors_, output_);
     }
-    if (normals_.packed.empty()) normals_ = pack_normals(terrain_);
-    light_colors(terrain_, normals_, env, shadow, colors_, output_);
     return &colors_;
 }
 
