@@ -131,9 +131,13 @@ std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& se
 // and the relighting of every sample for new sun directions (a moving sun,
 // as the time-of-day keys of `fly` move it), medians over a day's arc; and
 // the packing of the normals that the relighting reads, done once per terrain.
+// The ray casters' lighting sweeps the shadow mask alone and lights from it
+// (TerrainLighting); the GL methods sweep the ceiling, which their objects
+// read too.
 nlohmann::json bench_sun(const Terrain& t, const Environment& env) {
-    std::vector<double> sweep, light;
+    std::vector<double> sweep, mask_sweep, light;
     ShadowCeiling ceiling;
+    std::vector<std::uint8_t> mask;
     std::vector<Rgb8> colors;
     const auto t_pack = std::chrono::steady_clock::now();
     const PackedNormals normals = pack_normals(t);
@@ -146,11 +150,15 @@ nlohmann::json bench_sun(const Terrain& t, const Environment& env) {
         sweep_shadow_ceiling(t, e.sun_dir, ceiling);
         sweep.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         t0 = std::chrono::steady_clock::now();
-        light_colors(t, normals, e, &ceiling, colors);
+        sweep_shadow_mask(t, e.sun_dir, mask);
+        mask_sweep.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        t0 = std::chrono::steady_clock::now();
+        light_colors(t, normals, e, mask, colors);
         light.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
     return {{"sun_directions", int(sweep.size())},
             {"ms_shadow_sweep", median(sweep)},
+            {"ms_shadow_mask_sweep", median(mask_sweep)},
             {"ms_light", median(light)},
             {"ms_pack_normals_once", ms_pack}};
 }
@@ -221,9 +229,11 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
         std::printf("\nSun: lighting %s, shadows %s, sun azimuth %.1f elevation %.1f\n\n",
                     out["look"]["lighting"].get<std::string>().c_str(), out["look"]["shadows"].get<bool>() ? "on" : "off",
                     out["look"]["sun_azimuth"].get<double>(), out["look"]["sun_elevation"].get<double>());
-        std::printf("| step for a new sun direction (median of %d) | ms |\n|---|---:|\n| horizon sweep (shadow ceiling) | %.2f "
-                    "|\n| light of every sample | %.2f |\n\nOnce per terrain: packing the normals %.2f ms\n",
-                    s["sun_directions"].get<int>(), s["ms_shadow_sweep"].get<double>(), s["ms_light"].get<double>(),
+        std::printf("| step for a new sun direction (median of %d) | ms |\n|---|---:|\n| horizon sweep (shadow ceiling, GL) | %.2f "
+                    "|\n| horizon sweep (shadow mask, ray casters) | %.2f |\n| light of every sample (from the mask) | %.2f "
+                    "|\n\nOnce per terrain: packing the normals %.2f ms\n",
+                    s["sun_directions"].get<int>(), s["ms_shadow_sweep"].get<double>(),
+                    s["ms_shadow_mask_sweep"].get<double>(), s["ms_light"].get<double>(),
                     s["ms_pack_normals_once"].get<double>());
     }
     const nlohmann::json* with = find_run(runs, "voxel+objects");

@@ -110,7 +110,13 @@ struct BandScratch {
 // grid lines stays in the first-level cache. Each family of sun lines (J =
 // kLines j + phase) keeps its ceilings contiguous in j, so that the inner
 // loops run over contiguous arrays and vectorize.
-void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ceiling, BandScratch& b) {
+//
+// The block's results go to `ceiling` (world heights) or, when that is null,
+// to `mask` (1 where the sample's own height is below its ceiling): the
+// block holds both the sample's height and its ceiling, so the mask needs
+// neither read again.
+void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ceiling, std::uint8_t* mask,
+                BandScratch& b) {
     int first[kLines];
     for (int phase = 0; phase < kLines; ++phase) {
         first[phase] = ceil_div(J0 - phase, kLines);
@@ -215,6 +221,28 @@ void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* cei
 
         // The block's ceilings back into the grid.
         const float* O = b.out.data();
+        if (!ceiling) {
+            // The mask instead: here[p] of line i is the sample's own height (Terrain::sample_height).
+            if (g.stride_line == 1) {
+                int lo = g.length, hi = 0;
+                for (int i = 0; i < n_lines; ++i)
+                    if (b.p0[i] < b.p1[i]) lo = std::min(lo, b.p0[i]), hi = std::max(hi, b.p1[i]);
+                for (int p = lo; p < hi; ++p) {
+                    std::uint8_t* dst = mask + std::size_t(p) * cols + std::size_t(line0);
+                    for (int i = 0; i < n_lines; ++i)
+                        if (p >= b.p0[i] && p < b.p1[i])
+                            dst[i * g.step] = H[i * width + (p - base)] < O[i * width + (p - base)] ? 1 : 0;
+                }
+            } else {
+                for (int i = 0; i < n_lines; ++i) {
+                    const float* h = H + i * width - base;
+                    const float* c = O + i * width - base;
+                    std::uint8_t* dst = mask + std::size_t(line0 + g.step * i) * cols;
+                    for (int p = b.p0[i]; p < b.p1[i]; ++p) dst[p] = h[p] < c[p] ? 1 : 0;
+                }
+            }
+            continue;
+        }
         if (g.stride_line == 1) {
             int lo = g.length, hi = 0;
             for (int i = 0; i < n_lines; ++i)
@@ -233,34 +261,55 @@ void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* cei
     }
 }
 
-} // namespace
+glm::vec3 unit_sun(const glm::vec3& sun_dir) {
+    return glm::length(sun_dir) > 0 ? glm::normalize(sun_dir) : glm::vec3(0, 1, 0);
+}
 
-void sweep_shadow_ceiling(const Terrain& t, const glm::vec3& sun_dir, ShadowCeiling& out) {
-    out.rows = t.rows();
-    out.cols = t.cols();
-    out.sun_dir = glm::length(sun_dir) > 0 ? glm::normalize(sun_dir) : glm::vec3(0, 1, 0);
-    out.ceiling.resize(std::size_t(t.rows()) * std::size_t(t.cols()));
-    const glm::vec3 sun = out.sun_dir;
-    if (!(sun.y > 0)) { // below the horizon: nothing is lit by the sun
-        std::fill(out.ceiling.begin(), out.ceiling.end(), std::numeric_limits<float>::infinity());
-        return;
-    }
-    if (std::hypot(sun.x, sun.z) <= 1e-6f * sun.y) { // in the zenith: no cast shadows
-        std::fill(out.ceiling.begin(), out.ceiling.end(), ShadowCeiling::kOpen);
-        return;
-    }
+// Sun lines are independent: narrow bands of them (BandScratch) in
+// parallel, each band sweeping the first line of the next one as well
+// (the samples between the two need both). The sun is above the horizon
+// and off the zenith.
+void sweep_bands(const Terrain& t, const glm::vec3& sun, float* ceiling, std::uint8_t* mask) {
     const SweepGrid g = sweep_grid(t, sun);
-    float* ceiling = out.ceiling.data();
-    // Sun lines are independent: narrow bands of them (BandScratch) in
-    // parallel, each band sweeping the first line of the next one as well
-    // (the samples between the two need both).
     const int bands = (g.J_max - g.J_min + kBand) / kBand;
     tbb::parallel_for(0, bands, [&](int b) {
         const int J0 = g.J_min + b * kBand, J1 = std::min(g.J_max + 1, J0 + kBand);
         if (J0 >= J1) return;
         thread_local BandScratch scratch;
-        sweep_band(t, g, J0, J1, ceiling, scratch);
+        sweep_band(t, g, J0, J1, ceiling, mask, scratch);
     });
+}
+
+bool below_horizon(const glm::vec3& sun) { return !(sun.y > 0); }
+bool in_zenith(const glm::vec3& sun) { return std::hypot(sun.x, sun.z) <= 1e-6f * sun.y; }
+
+} // namespace
+
+void sweep_shadow_ceiling(const Terrain& t, const glm::vec3& sun_dir, ShadowCeiling& out) {
+    out.rows = t.rows();
+    out.cols = t.cols();
+    out.sun_dir = unit_sun(sun_dir);
+    out.ceiling.resize(std::size_t(t.rows()) * std::size_t(t.cols()));
+    const glm::vec3 sun = out.sun_dir;
+    if (below_horizon(sun)) { // nothing is lit by the sun
+        std::fill(out.ceiling.begin(), out.ceiling.end(), std::numeric_limits<float>::infinity());
+        return;
+    }
+    if (in_zenith(sun)) { // no cast shadows
+        std::fill(out.ceiling.begin(), out.ceiling.end(), ShadowCeiling::kOpen);
+        return;
+    }
+    sweep_bands(t, sun, out.ceiling.data(), nullptr);
+}
+
+void sweep_shadow_mask(const Terrain& t, const glm::vec3& sun_dir, std::vector<std::uint8_t>& mask) {
+    mask.resize(std::size_t(t.rows()) * std::size_t(t.cols()));
+    const glm::vec3 sun = unit_sun(sun_dir);
+    if (below_horizon(sun) || in_zenith(sun)) {
+        std::fill(mask.begin(), mask.end(), below_horizon(sun) ? 1 : 0);
+        return;
+    }
+    sweep_bands(t, sun, nullptr, mask.data());
 }
 
 std::vector<std::uint8_t> shadow_mask(const Terrain& t, const ShadowCeiling& c) {

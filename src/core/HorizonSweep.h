@@ -59,6 +59,14 @@ struct ShadowCeiling {
 // shadows everything: every ceiling is +infinity. Reuses out's storage.
 void sweep_shadow_ceiling(const Terrain& terrain, const glm::vec3& sun_dir, ShadowCeiling& out);
 
+// The per-sample mask alone (1 = in the terrain's shadow), row-major: the
+// same as shadow_mask(terrain, ceiling) for the ceiling sweep_shadow_ceiling
+// computes, written by the sweep as it goes (a byte per sample rather than a
+// float ceiling through memory and back: what the sun's light on the samples
+// needs, SunLight.h). A sun at or below the horizon shadows everything.
+// Reuses mask's storage.
+void sweep_shadow_mask(const Terrain& terrain, const glm::vec3& sun_dir, std::vector<std::uint8_t>& mask);
+
 // Per-sample mask (1 = in the terrain's shadow) of a sample's own height
 // against its ceiling, row-major.
 std::vector<std::uint8_t> shadow_mask(const Terrain& terrain, const ShadowCeiling& ceiling);

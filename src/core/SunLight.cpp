@@ -29,6 +29,11 @@ std::uint8_t channel(std::uint8_t albedo, float light) {
 
 } // namespace
 
+namespace {
+void light_samples(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
+                   const std::uint8_t* mask, std::vector<Rgb8>& out, LightOutput output);
+} // namespace
+
 glm::vec3 sun_direction(double azimuth_deg, double elevation_deg) {
     const double az = glm::radians(azimuth_deg), el = glm::radians(elevation_deg);
     return glm::vec3(float(std::sin(az) * std::cos(el)), float(std::sin(el)), float(-std::cos(az) * std::cos(el)));
@@ -68,6 +73,73 @@ glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit) {
 
 void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
                   std::vector<Rgb8>& out, LightOutput output) {
+    light_samples(t, normals, env, shadow, nullptr, out, output);
+}
+
+void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env,
+                  const std::vector<std::uint8_t>& shadow_mask, std::vector<Rgb8>& out, LightOutput output) {
+    light_samples(t, normals, env, nullptr, shadow_mask.data(), out, output);
+}
+
+namespace {
+
+// One row of light_samples: its inputs and scratch.
+struct LightRow {
+    int cols = 0;
+    glm::vec3 l{0.0f};
+    float vs = 1, y0 = 0;
+    bool light_only = false;
+    float amb[3] = {}, sun_rgb[3] = {};
+    const std::uint32_t* n = nullptr;
+    const std::uint16_t* raw = nullptr;
+    const std::uint8_t* albedo = nullptr;
+    const float* ceiling = nullptr;
+    const std::uint8_t* mask = nullptr;
+    float* L = nullptr;  // cols
+    float* LL = nullptr; // 3 cols
+    std::uint8_t* dst = nullptr;
+};
+
+// Passes over the row, each without branches, so that each vectorizes.
+[[gnu::always_inline]] inline void light_row_body(const LightRow& r) {
+    const int cols = r.cols;
+    const glm::vec3 l = r.l;
+    float* L = r.L;
+    for (int col = 0; col < cols; ++col) {
+        const std::uint32_t p = r.n[col];
+        L[col] = std::max(PackedNormals::x_of(p) * l.x + PackedNormals::y_of(p) * l.y + PackedNormals::z_of(p) * l.z, 0.0f);
+    }
+    if (r.ceiling) {
+        for (int col = 0; col < cols; ++col) L[col] = r.vs * float(r.raw[col]) + r.y0 < r.ceiling[col] ? 0.0f : L[col];
+    } else if (r.mask) {
+        for (int col = 0; col < cols; ++col) L[col] = r.mask[col] ? 0.0f : L[col];
+    }
+    // The light per channel, then Rgb8 as bytes: plain loops, which vectorize.
+    static_assert(sizeof(Rgb8) == 3);
+    const std::size_t count = 3 * std::size_t(cols);
+    float* LL = r.LL;
+    for (int col = 0; col < cols; ++col) {
+        LL[3 * col] = r.amb[0] + r.sun_rgb[0] * L[col];
+        LL[3 * col + 1] = r.amb[1] + r.sun_rgb[1] * L[col];
+        LL[3 * col + 2] = r.amb[2] + r.sun_rgb[2] * L[col];
+    }
+    if (r.light_only)
+        for (std::size_t i = 0; i < count; ++i) r.dst[i] = channel(128, LL[i]);
+    else
+        for (std::size_t i = 0; i < count; ++i) r.dst[i] = channel(r.albedo[i], LL[i]);
+}
+
+void light_row_portable(const LightRow& r) { light_row_body(r); }
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define OVERFLIGHT_LIGHT_AVX2 1
+// The same compiled for AVX2 (8 lanes rather than SSE2's 4; no FMA, so the
+// same bits), picked at run time.
+__attribute__((target("avx2"))) void light_row_avx2(const LightRow& r) { light_row_body(r); }
+#endif
+
+void light_samples(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
+                   const std::uint8_t* mask, std::vector<Rgb8>& out, LightOutput output) {
     const bool light_only = output == LightOutput::Light;
     out.resize(t.colors().size());
     const glm::vec3 sun = unit_sun(env);
@@ -76,45 +148,42 @@ void light_colors(const Terrain& t, const PackedNormals& normals, const Environm
     const glm::vec3 l = day ? sun / PackedNormals::kScale : glm::vec3(0.0f);
     const int cols = t.cols();
     const float vs = t.v_scale(), y0 = t.y_offset();
+    LightRow r;
+    r.cols = cols;
+    r.l = l;
+    r.vs = vs;
+    r.y0 = y0;
+    r.light_only = light_only;
+    r.amb[0] = env.ambient.r, r.amb[1] = env.ambient.g, r.amb[2] = env.ambient.b;
+    r.sun_rgb[0] = env.sun_color.r, r.sun_rgb[1] = env.sun_color.g, r.sun_rgb[2] = env.sun_color.b;
+#if OVERFLIGHT_LIGHT_AVX2
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+#endif
     tbb::parallel_for(0, t.rows(), [&](int row) {
         const std::size_t i0 = t.index(row, 0);
-        const std::uint32_t* n = normals.packed.data() + i0;
-        const std::uint16_t* raw = t.heights().data() + i0;
-        const Rgb8* albedo = t.colors().data() + i0;
-        Rgb8* dst = out.data() + i0;
-        // Two passes over the row, each without branches, so that both vectorize.
-        thread_local std::vector<float> lambert;
+        thread_local std::vector<float> lambert, light;
         lambert.resize(std::size_t(cols));
-        float* L = lambert.data();
-        for (int col = 0; col < cols; ++col) {
-            const std::uint32_t p = n[col];
-            L[col] = std::max(PackedNormals::x_of(p) * l.x + PackedNormals::y_of(p) * l.y + PackedNormals::z_of(p) * l.z, 0.0f);
+        light.resize(3 * std::size_t(cols));
+        LightRow q = r;
+        q.n = normals.packed.data() + i0;
+        q.raw = t.heights().data() + i0;
+        q.albedo = reinterpret_cast<const std::uint8_t*>(t.colors().data() + i0);
+        q.ceiling = shadow ? shadow->ceiling.data() + i0 : nullptr;
+        q.mask = mask ? mask + i0 : nullptr;
+        q.L = lambert.data();
+        q.LL = light.data();
+        q.dst = reinterpret_cast<std::uint8_t*>(out.data() + i0);
+#if OVERFLIGHT_LIGHT_AVX2
+        if (avx2) {
+            light_row_avx2(q);
+            return;
         }
-        if (shadow) {
-            const float* ceiling = shadow->ceiling.data() + i0;
-            for (int col = 0; col < cols; ++col) L[col] = vs * float(raw[col]) + y0 < ceiling[col] ? 0.0f : L[col];
-        }
-        // The light per channel, then Rgb8 as bytes: plain loops, which vectorize.
-        static_assert(sizeof(Rgb8) == 3);
-        const std::size_t count = 3 * std::size_t(cols);
-        thread_local std::vector<float> light;
-        light.resize(count);
-        float* LL = light.data();
-        const float amb[3] = {env.ambient.r, env.ambient.g, env.ambient.b};
-        const float sun_rgb[3] = {env.sun_color.r, env.sun_color.g, env.sun_color.b};
-        for (int col = 0; col < cols; ++col) {
-            LL[3 * col] = amb[0] + sun_rgb[0] * L[col];
-            LL[3 * col + 1] = amb[1] + sun_rgb[1] * L[col];
-            LL[3 * col + 2] = amb[2] + sun_rgb[2] * L[col];
-        }
-        const auto* a = reinterpret_cast<const std::uint8_t*>(albedo);
-        auto* d = reinterpret_cast<std::uint8_t*>(dst);
-        if (light_only)
-            for (std::size_t i = 0; i < count; ++i) d[i] = channel(128, LL[i]);
-        else
-            for (std::size_t i = 0; i < count; ++i) d[i] = channel(a[i], LL[i]);
+#endif
+        light_row_portable(q);
     });
 }
+
+} // namespace
 
 const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     if (valid_ && same_light(env, lit_for_)) return baked_ ? nullptr : &colors_;
@@ -128,15 +197,16 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
         return &colors_;
     }
     if (baked_) return nullptr;
-    const ShadowCeiling* shadow = nullptr;
+    if (normals_.packed.empty()) normals_ = pack_normals(terrain_);
     if (env.shadows) {
         const glm::vec3 sun = unit_sun(env);
-        if (!shadow_valid_ || shadow_.sun_dir != sun) sweep_shadow_ceiling(terrain_, sun, shadow_);
+        if (!shadow_valid_ || shadow_for_ != sun) sweep_shadow_mask(terrain_, sun, shadow_);
         shadow_valid_ = true;
-        shadow = &shadow_;
+        shadow_for_ = sun;
+        light_colors(terrain_, normals_, env, shadow_, colors_, output_);
+    } else {
+        light_colors(terrain_, normals_, env, nullptr, colors_, output_);
     }
-    if (normals_.packed.empty()) normals_ = pack_normals(terrain_);
-    light_colors(terrain_, normals_, env, shadow, colors_, output_);
     return &colors_;
 }
 

@@ -64,11 +64,18 @@ enum class LightOutput { Colors, Light };
 // shadowed) must have been computed for env.sun_dir. Parallel over rows.
 void light_colors(const Terrain& terrain, const PackedNormals& normals, const Environment& env,
                   const ShadowCeiling* shadow, std::vector<Rgb8>& out, LightOutput output = LightOutput::Colors);
+// The same with the terrain's shadow as a mask (sweep_shadow_mask for
+// env.sun_dir; 1 = shadowed): the same colors as with the ceiling it stands
+// for, reading a byte per sample instead of a height and a ceiling.
+void light_colors(const Terrain& terrain, const PackedNormals& normals, const Environment& env,
+                  const std::vector<std::uint8_t>& shadow_mask, std::vector<Rgb8>& out,
+                  LightOutput output = LightOutput::Colors);
 
 // The lit colors of one terrain for the environment of the frame, recomputed
 // only when the sun, its colors or Environment::shadows change (the horizon
 // sweep only when the sun's direction does), so that a still sun costs a
-// comparison per frame.
+// comparison per frame. The sweep writes the shadow mask alone
+// (sweep_shadow_mask), which the light reads.
 class TerrainLighting {
 public:
     // Keeps a reference to terrain (it must outlive this object).
@@ -87,7 +94,8 @@ private:
     LightOutput output_;
     bool valid_ = false, baked_ = false;
     Environment lit_for_;
-    ShadowCeiling shadow_;
+    std::vector<std::uint8_t> shadow_; // sweep_shadow_mask for shadow_for_
+    glm::vec3 shadow_for_{0.0f};
     bool shadow_valid_ = false;
     PackedNormals normals_; // packed on the first lit call
     std::vector<Rgb8> colors_;

@@ -8,6 +8,7 @@
 // of a Terrain with Objects", SIBGRAPI 1997, Algorithm 1, sec. 5.1-5.2,
 // eq. 7 and Algorithm 2, sec. 6.
 #include "raycast/FloatingHorizonState.h"
+#include "raycast/ShearDrape.h"
 #include "raycast/ShearResolve.h"
 
 #include <glm/geometric.hpp>
@@ -21,17 +22,20 @@ namespace overflight {
 namespace {
 
 // Multiplies the light painted into a block by the imagery under each
-// painted pixel (ImageryTexels.h: drape_column); column i's plane runs along
-// F + a_i R, F and R horizontal for the shear camera.
+// painted pixel (ImageryTexels.h: drape_column, row by row: ShearDrape.h);
+// column i's plane runs along F + a_i R, F and R horizontal for the shear camera.
 void apply_imagery(const FloatingHorizonState& s, const Camera& camera, int c0, const ShearBlock& blk,
                    std::uint32_t* color, const std::uint32_t* slice) {
     const glm::dvec3 F = camera.forward(), R = camera.right();
     const DrapeFrame frame{&s.imagery, s.frame.slices.df.data(), s.frame.slices.df[0], s.frame.rows.m.data(),
                            float(camera.eye.x), float(camera.eye.z)};
+    float dir_x[kShearBlock], dir_z[kShearBlock];
     for (int i = 0; i < blk.n; ++i) {
         const double a = s.frame.columns.a[std::size_t(c0 + i)];
-        drape_column(frame, float(F.x + a * R.x), float(F.z + a * R.z), color + i, slice + i, blk.jend[i], kShearBlock);
+        dir_x[i] = float(F.x + a * R.x);
+        dir_z[i] = float(F.z + a * R.z);
     }
+    drape_shear_block(frame, dir_x, dir_z, blk.n, blk.jend, color, slice);
 }
 
 // Casts and resolves the blocks of kShearBlock columns in parallel: a block

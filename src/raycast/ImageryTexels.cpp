@@ -8,6 +8,7 @@ namespace overflight {
 void ImageryTexels::bind(const ImageryPyramid* pyramid) {
     pyramid_ = pyramid;
     levels_.clear();
+    lanes_ = LevelLanes{};
     if (!pyramid) return;
     x0_ = float(pyramid->x0());
     z0_ = float(pyramid->z0());
@@ -17,6 +18,16 @@ void ImageryTexels::bind(const ImageryPyramid* pyramid) {
                                 float(1.0 / pyramid->texel_z(l))});
     }
     last_level_ = pyramid->levels() - 1;
+    // Offsets between separate allocations, taken as integers (the kernels
+    // that add them to level 0's address do so as integers too).
+    const auto base = reinterpret_cast<std::uintptr_t>(levels_[0].texels);
+    for (const Level& l : levels_) {
+        lanes_.inv_x.push_back(l.inv_x);
+        lanes_.inv_z.push_back(l.inv_z);
+        lanes_.w.push_back(l.w);
+        lanes_.h.push_back(l.h);
+        lanes_.offset.push_back(static_cast<long long>(reinterpret_cast<std::uintptr_t>(l.texels) - base));
+    }
 }
 
 DrapeRun drape_run(const DrapeFrame& f, const std::uint32_t* slice, int j, int jend, std::ptrdiff_t row_stride) {

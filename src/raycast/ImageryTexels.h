@@ -49,14 +49,33 @@ public:
         return l.texels[std::size_t(row) * std::size_t(l.w) + std::size_t(col)];
     }
 
-private:
+    // What level() and at() read, for kernels that compute them lane by lane
+    // (ShearDrape.h): the tables per slice and per row, the pyramid's origin
+    // and last level, and each level's texels, size and scale.
     struct Level {
         const Rgba8* texels = nullptr;
         int w = 1, h = 1;
         float inv_x = 1, inv_z = 1; // texels per world unit
     };
+    const float* slice_log2() const { return slice_log2_.data(); }
+    const float* row_log2() const { return row_log2_.data(); }
+    float x0() const { return x0_; }
+    float z0() const { return z0_; }
+    int last_level() const { return last_level_; }
+    const Level& level_at(int level) const { return levels_[std::size_t(level)]; }
+    // The same per level as arrays, for gathers: texels per world unit, size,
+    // and the byte offset of the level's texels from level 0's.
+    struct LevelLanes {
+        std::vector<float> inv_x, inv_z;
+        std::vector<int> w, h;
+        std::vector<long long> offset;
+    };
+    const LevelLanes& level_lanes() const { return lanes_; }
+
+private:
     const ImageryPyramid* pyramid_ = nullptr;
     std::vector<Level> levels_;
+    LevelLanes lanes_;
     float x0_ = 0, z0_ = 0;
     int last_level_ = 0;
     std::vector<float> slice_log2_, row_log2_;

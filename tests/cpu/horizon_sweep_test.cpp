@@ -280,3 +280,29 @@ TEST(SunLight, PackedNormalsWithinOneLevelOnTheDemo) {
         EXPECT_LE(worst, 1) << "sun " << az << "/" << el;
     }
 }
+
+// The mask the sweep writes as it goes (sweep_shadow_mask) is the ceiling's
+// mask (shadow_mask) sample for sample, for suns across both sweep axes,
+// both directions, a diagonal, the zenith and below the horizon; the light
+// from it is the light from the ceiling, byte for byte.
+TEST(HorizonSweep, MaskSweepIsTheCeilingsMask) {
+    DemoOptions o;
+    o.size = 257;
+    const DataSet ds = make_demo_island(o);
+    const Terrain& t = ds.terrain;
+    const PackedNormals normals = pack_normals(t);
+    for (const auto& [az, el] : {std::pair{30.0, 8.0}, {135.0, 20.0}, {225.0, 10.0}, {250.0, 12.0}, {300.0, 35.0},
+                                 {90.0, 60.0}, {0.0, 90.0}, {120.0, -5.0}}) {
+        Environment env = ds.environment;
+        env.sun_dir = sun_direction(az, el);
+        ShadowCeiling ceiling;
+        sweep_shadow_ceiling(t, env.sun_dir, ceiling);
+        std::vector<std::uint8_t> mask;
+        sweep_shadow_mask(t, env.sun_dir, mask);
+        EXPECT_EQ(mask, shadow_mask(t, ceiling)) << "sun " << az << "," << el;
+        std::vector<Rgb8> from_ceiling, from_mask;
+        light_colors(t, normals, env, &ceiling, from_ceiling);
+        light_colors(t, normals, env, mask, from_mask);
+        EXPECT_TRUE(from_ceiling == from_mask) << "sun " << az << "," << el;
+    }
+}

@@ -1,0 +1,95 @@
+// The cost of a new sun direction on the demo island (default 4097², as the
+// speed target's; environment OVERFLIGHT_BENCH_DEMO_SIZE sets it): the
+// horizon sweep writing float ceilings (what the GL methods upload) or the
+// shadow mask alone (what the ray casters' lighting reads), and the light of
+// every sample from either (core/HorizonSweep.h, core/SunLight.h). The suns
+// are a day's arc, one per iteration, as the time-of-day keys move it.
+//   bench_sun_bench --benchmark_repetitions=5 (compare the minima on a busy machine)
+#include "core/DemoIsland.h"
+#include "core/HorizonSweep.h"
+#include "core/SunLight.h"
+
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <cstdlib>
+
+using namespace overflight;
+
+namespace {
+
+const DataSet& island() {
+    static const DataSet ds = [] {
+        const char* env = std::getenv("OVERFLIGHT_BENCH_DEMO_SIZE");
+        return make_demo_island({env ? std::atoi(env) : 4097});
+    }();
+    return ds;
+}
+
+const PackedNormals& normals() {
+    static const PackedNormals n = pack_normals(island().terrain);
+    return n;
+}
+
+// The sun of iteration i: 7:00 to 17:00 in steps of 1.25 h, round and round.
+glm::vec3 sun_of(long long i) { return sun_at_hour(7.0 + 1.25 * double(i % 9)); }
+
+void BM_SweepCeiling(benchmark::State& state) {
+    const Terrain& t = island().terrain;
+    ShadowCeiling c;
+    long long i = 0;
+    for (auto _ : state) sweep_shadow_ceiling(t, sun_of(i++), c);
+}
+
+void BM_SweepMask(benchmark::State& state) {
+    const Terrain& t = island().terrain;
+    std::vector<std::uint8_t> mask;
+    long long i = 0;
+    for (auto _ : state) sweep_shadow_mask(t, sun_of(i++), mask);
+}
+
+// The light alone, for one sun (its sweep done before timing).
+void BM_LightFromCeiling(benchmark::State& state) {
+    const Terrain& t = island().terrain;
+    Environment env = island().environment;
+    env.sun_dir = sun_of(3);
+    env.shadows = true;
+    ShadowCeiling c;
+    sweep_shadow_ceiling(t, env.sun_dir, c);
+    std::vector<Rgb8> out;
+    for (auto _ : state) light_colors(t, normals(), env, &c, out);
+}
+
+void BM_LightFromMask(benchmark::State& state) {
+    const Terrain& t = island().terrain;
+    Environment env = island().environment;
+    env.sun_dir = sun_of(3);
+    env.shadows = true;
+    std::vector<std::uint8_t> mask;
+    sweep_shadow_mask(t, env.sun_dir, mask);
+    std::vector<Rgb8> out;
+    for (auto _ : state) light_colors(t, normals(), env, mask, out);
+}
+
+// What the ray casters' lighting pays for a new sun direction: mask and light.
+void BM_NewSunMaskAndLight(benchmark::State& state) {
+    const Terrain& t = island().terrain;
+    Environment env = island().environment;
+    env.shadows = true;
+    std::vector<std::uint8_t> mask;
+    std::vector<Rgb8> out;
+    long long i = 0;
+    for (auto _ : state) {
+        env.sun_dir = sun_of(i++);
+        sweep_shadow_mask(t, env.sun_dir, mask);
+        light_colors(t, normals(), env, mask, out);
+    }
+}
+
+} // namespace
+
+BENCHMARK(BM_SweepCeiling)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SweepMask)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_LightFromCeiling)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_LightFromMask)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_NewSunMaskAndLight)->Unit(benchmark::kMillisecond)->UseRealTime();

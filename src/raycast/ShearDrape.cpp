@@ -1,0 +1,126 @@
+// See ShearDrape.h and ImageryTexels.h.
+#include "raycast/ShearDrape.h"
+
+#include <algorithm>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define OVERFLIGHT_DRAPE_AVX2 1
+#include <immintrin.h>
+#endif
+
+namespace overflight {
+
+namespace {
+
+#if OVERFLIGHT_DRAPE_AVX2
+// Lanes [i, i + 8) of a block: drape_pixel lane by lane (DrapeRun's slope of
+// the run's top row found on the way down), modulate_light with 16-bit
+// multiplies (each channel's l a + 64 fits: 255 x 255 + 64 < 2^16).
+__attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const float* dir_x, const float* dir_z,
+                                                      const int* jend, int i, std::uint32_t* color,
+                                                      const std::uint32_t* slice) {
+    int jtop = 0;
+    for (int q = 0; q < 8; ++q) jtop = std::max(jtop, jend[i + q]);
+    if (jtop == 0) return;
+    const ImageryTexels& im = *f.imagery;
+    const ImageryTexels::LevelLanes& lv = im.level_lanes();
+    const float* slog = im.slice_log2();
+    const float* rlog = im.row_log2();
+    const char* texels = reinterpret_cast<const char*>(im.level_at(0).texels);
+    const __m256i jendv = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(jend + i));
+    const __m256 dx = _mm256_loadu_ps(dir_x + i), dz = _mm256_loadu_ps(dir_z + i);
+    const __m256 eye_x = _mm256_set1_ps(f.eye_x), eye_z = _mm256_set1_ps(f.eye_z);
+    const __m256 x0 = _mm256_set1_ps(im.x0()), z0 = _mm256_set1_ps(im.z0());
+    const __m256 half = _mm256_set1_ps(0.5f), zero_f = _mm256_setzero_ps();
+    const __m256 d_before = _mm256_set1_ps(f.d_before_first);
+    const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
+    const __m256i last = _mm256_set1_epi32(im.last_level());
+    const __m256i rb_mask = _mm256_set1_epi32(0x00FF00FF), byte = _mm256_set1_epi32(0xFF);
+    const __m256i round = _mm256_set1_epi32(0x00400040), max_rb = _mm256_set1_epi32(0x00FF00FF);
+    __m256 m_top = zero_f;
+    __m256i prev = zero;
+    for (int j = jtop - 1; j >= 0; --j) {
+        const float mj = f.row_m[j];
+        const __m256 m = _mm256_set1_ps(mj);
+        const __m256i painted = _mm256_cmpgt_epi32(jendv, _mm256_set1_epi32(j));
+        // Unpainted lanes read slice 0 (their entries are stale).
+        const __m256i k = _mm256_and_si256(
+            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(slice + std::size_t(j) * kShearBlock + i)), painted);
+        // A run's top row: the column's top painted row, or the row below a new slice.
+        const __m256i top = _mm256_or_si256(_mm256_cmpeq_epi32(jendv, _mm256_set1_epi32(j + 1)),
+                                            _mm256_xor_si256(_mm256_cmpeq_epi32(k, prev), _mm256_set1_epi32(-1)));
+        m_top = _mm256_blendv_ps(m_top, m, _mm256_castsi256_ps(top));
+        prev = k;
+        const __m256 dk = _mm256_i32gather_ps(f.slice_d, k, 4);
+        __m256 d = dk;
+        if (mj < 0.0f) {
+            // Rays looking down meet the sample's height in front of slice k,
+            // clamped to the cell [d_{k-1}, d_k]; others hit its face at d_k.
+            const __m256 d_prev = _mm256_blendv_ps(_mm256_i32gather_ps(f.slice_d, _mm256_max_epi32(_mm256_sub_epi32(k, one), zero), 4),
+                                                   d_before, _mm256_castsi256_ps(_mm256_cmpeq_epi32(k, zero)));
+            const __m256 v = _mm256_mul_ps(dk, _mm256_div_ps(m_top, m));
+            const __m256 clamped = _mm256_min_ps(_mm256_max_ps(v, d_prev), dk);
+            d = _mm256_blendv_ps(dk, clamped, _mm256_cmp_ps(m_top, zero_f, _CMP_LT_OQ));
+        }
+        const __m256 x = _mm256_add_ps(eye_x, _mm256_mul_ps(d, dx));
+        const __m256 z = _mm256_add_ps(eye_z, _mm256_mul_ps(d, dz));
+        // ImageryTexels::level: l < 1 truncates to at most 0.
+        const __m256 l = _mm256_add_ps(_mm256_add_ps(_mm256_i32gather_ps(slog, k, 4), _mm256_set1_ps(rlog[j])), half);
+        const __m256i lvl = _mm256_min_epi32(_mm256_max_epi32(_mm256_cvttps_epi32(l), zero), last);
+        // ImageryTexels::at.
+        const __m256i w = _mm256_i32gather_epi32(lv.w.data(), lvl, 4);
+        const __m256i h = _mm256_i32gather_epi32(lv.h.data(), lvl, 4);
+        const __m256i col = _mm256_min_epi32(
+            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(x, x0), _mm256_i32gather_ps(lv.inv_x.data(), lvl, 4))), zero),
+            _mm256_sub_epi32(w, one));
+        const __m256i row = _mm256_min_epi32(
+            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(z, z0), _mm256_i32gather_ps(lv.inv_z.data(), lvl, 4))), zero),
+            _mm256_sub_epi32(h, one));
+        const __m256i idx = _mm256_add_epi32(_mm256_mullo_epi32(row, w), col);
+        const auto* offsets = reinterpret_cast<const long long*>(lv.offset.data());
+        const __m128i lvl_lo = _mm256_castsi256_si128(lvl), lvl_hi = _mm256_extracti128_si256(lvl, 1);
+        const __m256i at_lo = _mm256_add_epi64(_mm256_i32gather_epi64(offsets, lvl_lo, 8),
+                                               _mm256_slli_epi64(_mm256_cvtepi32_epi64(_mm256_castsi256_si128(idx)), 2));
+        const __m256i at_hi = _mm256_add_epi64(_mm256_i32gather_epi64(offsets, lvl_hi, 8),
+                                               _mm256_slli_epi64(_mm256_cvtepi32_epi64(_mm256_extracti128_si256(idx, 1)), 2));
+        const __m256i albedo = _mm256_set_m128i(_mm256_i64gather_epi32(reinterpret_cast<const int*>(texels), at_hi, 1),
+                                                _mm256_i64gather_epi32(reinterpret_cast<const int*>(texels), at_lo, 1));
+        // modulate_light.
+        std::uint32_t* out = color + std::size_t(j) * kShearBlock + i;
+        const __m256i light = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(out));
+        __m256i rb = _mm256_mullo_epi16(_mm256_and_si256(light, rb_mask), _mm256_and_si256(albedo, rb_mask));
+        rb = _mm256_min_epu16(_mm256_srli_epi16(_mm256_add_epi16(rb, round), 7), max_rb);
+        __m256i g = _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(light, 8), byte),
+                                       _mm256_and_si256(_mm256_srli_epi32(albedo, 8), byte));
+        g = _mm256_min_epu16(_mm256_srli_epi16(_mm256_add_epi16(g, round), 7), max_rb);
+        const __m256i lit = _mm256_or_si256(rb, _mm256_slli_epi32(_mm256_and_si256(g, byte), 8));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_blendv_epi8(light, lit, painted));
+    }
+}
+#endif
+
+} // namespace
+
+void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir_z, int n, const int* jend,
+                       std::uint32_t* color, const std::uint32_t* slice, ResolveKernel kernel) {
+#if OVERFLIGHT_DRAPE_AVX2
+    static const bool avx2 = resolve_kernel_available(ResolveKernel::Avx2);
+    if (kernel == ResolveKernel::Auto)
+        kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
+    if (kernel == ResolveKernel::Avx2) {
+        // Lanes at or past n are painted nowhere.
+        alignas(32) int ends[kShearBlock];
+        alignas(32) float dxs[kShearBlock], dzs[kShearBlock];
+        for (int i = 0; i < kShearBlock; ++i) {
+            ends[i] = i < n ? jend[i] : 0;
+            dxs[i] = i < n ? dir_x[i] : 0.0f;
+            dzs[i] = i < n ? dir_z[i] : 0.0f;
+        }
+        for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2(f, dxs, dzs, ends, i, color, slice);
+        return;
+    }
+#endif
+    for (int i = 0; i < n; ++i) drape_column(f, dir_x[i], dir_z[i], color + i, slice + i, jend[i], kShearBlock);
+}
+
+} // namespace overflight

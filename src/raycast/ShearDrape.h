@@ -1,0 +1,24 @@
+#pragma once
+// The imagery draped over a shear block (ImageryTexels.h, drape_column) row
+// by row rather than column by column, so that the lanes of a row are
+// computed together: each lane keeps the slope of its current run's top row
+// while the rows are walked top-down (a run's top is the first row met), and
+// the texel fetches of a row's lanes are independent loads in flight
+// together. Same bits as drape_column on every column: the same float
+// operations in the same order, lane by lane.
+#include "raycast/ImageryTexels.h"
+#include "raycast/ShearResolve.h" // kShearBlock, ResolveKernel
+
+#include <cstdint>
+
+namespace overflight {
+
+// Drapes the block's columns i < n: column i's plane runs along (dir_x[i],
+// dir_z[i]) per unit of view depth, its painted rows are j < jend[i], its
+// pixel j at color/slice[j * kShearBlock + i] (ShearResolve.h's scratch).
+// ResolveKernel::Avx2 must be resolve_kernel_available(); Auto picks it
+// where it is, else runs drape_column per column (ResolveKernel::Portable).
+void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir_z, int n, const int* jend,
+                       std::uint32_t* color, const std::uint32_t* slice, ResolveKernel kernel = ResolveKernel::Auto);
+
+} // namespace overflight
