@@ -13,6 +13,7 @@
 #include "io/GdalSource.h"
 #include "io/HeightMapping.h"
 #include "io/ImageryRaster.h"
+#include "io/MetricWarp.h"
 #include "io/UsgsDemHeader.h"
 
 #include <cpl_conv.h>
@@ -454,24 +455,44 @@ double to_square_metric_cells(Grid& grid, const MetricGrid& m, int factor, const
     info.crs = m.crs;
     double hs = m.georeferenced ? std::hypot(grid.gt[1], grid.gt[4]) : 1.0;
     if (m.warped) {
-        std::vector<std::string> warp_opts = m.target;
+        gdal::Dataset source = grid_dataset(grid, path);
         if (factor > 1) {
+            // A decimated read is rendered, never tiled: gdalwarp with its
+            // approximate transformer onto the coarser cells.
+            std::vector<std::string> warp_opts = m.target;
             const double res = m.res * factor;
             const double xmax = m.gt[0] + m.gt[1] * m.cols, ymin = m.gt[3] + m.gt[5] * m.rows;
             warp_opts.insert(warp_opts.end(), {"-tr", fmt(res, 17), fmt(res, 17), "-te", fmt(m.gt[0], 17),
                                                fmt(ymin, 17), fmt(xmax, 17), fmt(m.gt[3], 17)});
-        } else if (m.finer_cells) {
-            warp_opts.insert(warp_opts.end(), {"-tr", fmt(m.res, 17), fmt(m.res, 17)});
+            const std::vector<std::string> common = metric_warp_options();
+            warp_opts.insert(warp_opts.end(), common.begin(), common.end());
+            warp_opts.insert(warp_opts.end(), {"-srcnodata", fmt(kNoData, 9), "-et", "0.125"});
+            gdal::Dataset warped = gdal::warp(source.get(), warp_opts, path);
+            grid = grid_of(warped.get(), path);
+        } else {
+            // Full resolution: the warp the windowed tiler makes per window
+            // (io/MetricWarp.h), so that tiles cut from either agree.
+            MetricGridSpec spec;
+            std::copy(m.gt, m.gt + 6, spec.gt.begin());
+            spec.cols = m.cols;
+            spec.rows = m.rows;
+            if (!m.target.empty()) spec.wkt = m.wkt;
+            const MetricWarp warp(source.get(), spec, path);
+            Grid out;
+            out.cols = m.cols;
+            out.rows = m.rows;
+            std::copy(m.gt, m.gt + 6, out.gt);
+            out.wkt = warped_crs_wkt(m.wkt);
+            try {
+                out.z.resize(std::size_t(out.rows) * std::size_t(out.cols));
+            } catch (const std::bad_alloc&) {
+                throw Error(path, "not enough memory for a " + std::to_string(out.cols) + "x" +
+                                      std::to_string(out.rows) + " raster");
+            }
+            warp.read(0, 0, out.rows, out.cols, out.z.data());
+            source.reset();
+            grid = std::move(out);
         }
-        const std::vector<std::string> common = metric_warp_options();
-        warp_opts.insert(warp_opts.end(), common.begin(), common.end());
-        warp_opts.insert(warp_opts.end(), {"-srcnodata", fmt(kNoData, 9)});
-        // A decimated read is rendered, never tiled: GDAL's approximate
-        // transformer saves it a projection per sample.
-        if (factor > 1) warp_opts.insert(warp_opts.end(), {"-et", "0.125"});
-        gdal::Dataset source = grid_dataset(grid, path);
-        gdal::Dataset warped = gdal::warp(source.get(), warp_opts, path);
-        grid = grid_of(warped.get(), path);
         grid.georeferenced = true;
         hs = std::abs(grid.gt[1]);
         info.reprojected = true;

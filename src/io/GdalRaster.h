@@ -18,8 +18,8 @@ namespace overflight {
 //  - a geographic CRS (degrees) is warped to the UTM zone of the raster's centre
 //    (same datum), bilinear, with square cells at GDAL's suggested native
 //    resolution; a projected raster with non-square or rotated cells is warped
-//    within its CRS to square cells of its finer pixel size (with GDAL's
-//    exact transformer at full resolution: io/GdalSource.h);
+//    within its CRS to square cells of its finer pixel size (at full
+//    resolution as the windowed tiler warps each window: io/MetricWarp.h);
 //  - no-data samples (the band's no-data value, NaN, and cells outside the source
 //    after reprojection) are filled from valid neighbours by GDALFillNodata;
 //  - elevations map to 16 bits by choose_height_mapping (HeightMapping.h) over

@@ -1,6 +1,7 @@
 #include "io/GdalSource.h"
 
 #include "core/Error.h"
+#include "io/Gdal.h"
 #include "io/UsgsDemHeader.h"
 
 #include <cpl_conv.h>
@@ -63,7 +64,7 @@ void append_band_warnings(GDALDatasetH ds, std::vector<std::string>& warnings) {
 std::vector<std::string> metric_warp_options() {
     char nodata[32];
     std::snprintf(nodata, sizeof nodata, "%.9g", double(kNoData));
-    return {"-r", "bilinear", "-dstnodata", nodata, "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA", "-et", "0"};
+    return {"-r", "bilinear", "-dstnodata", nodata, "-ot", "Float32", "-wo", "INIT_DEST=NO_DATA"};
 }
 
 double metres_per_unit(const std::string& unit, std::string& name) {
@@ -96,6 +97,13 @@ std::string to_wkt(OGRSpatialReferenceH srs) {
     std::string s = wkt ? wkt : "";
     CPLFree(wkt);
     return s;
+}
+
+std::string warped_crs_wkt(const std::string& wkt) {
+    if (wkt.empty()) return wkt;
+    gdal::Dataset ds = gdal::create_mem("CRS", 1, 1, 1, GDT_Byte, nullptr, wkt);
+    const char* reported = GDALGetProjectionRef(ds.get());
+    return reported ? reported : "";
 }
 
 Srs utm_for(OGRSpatialReferenceH src, double lon, double lat) {

@@ -26,12 +26,10 @@ inline constexpr float kNoData = -1.0e30f;
 // 1-degree tile. The fill of a sample reads only the samples this close.
 inline constexpr int kFillSearchDistance = 256;
 
-// The gdalwarp options, after the target grid's, with which a raster is
-// reprojected onto square metric cells at full resolution: bilinear, Float32
-// with kNoData outside the source, and GDAL's exact transformer (-et 0)
-// rather than its approximation within 0.125 pixel along each chunk's rows,
-// so that a sample's value does not depend on how the warp is cut in chunks
-// (the whole grid when loaded, a tile's window when tiled).
+// The gdalwarp options, after the target grid's, of a reprojection onto
+// square metric cells: bilinear, Float32 with kNoData outside the source.
+// Used for the grid gdalwarp suggests and for a decimated load; a full
+// resolution load and the windowed tiler warp through io/MetricWarp.h.
 std::vector<std::string> metric_warp_options();
 
 struct SrsCloser {
@@ -60,6 +58,11 @@ double metres_per_unit(const std::string& unit, std::string& name);
 
 // The CRS as WKT.
 std::string to_wkt(OGRSpatialReferenceH srs);
+
+// `wkt` as a GDAL dataset given it reports it (GDALSetProjection, then
+// GDALGetProjectionRef): the CRS the loader and the windowed tiler record
+// for a warped grid, the same string from both.
+std::string warped_crs_wkt(const std::string& wkt);
 
 // The UTM zone of (lon, lat) on the datum of the geographic `src`: EPSG codes
 // for WGS 84, otherwise the datum is kept so no datum shift is introduced.

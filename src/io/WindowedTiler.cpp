@@ -8,6 +8,7 @@
 #include "io/Gdal.h"
 #include "io/GdalSource.h"
 #include "io/HeightMapping.h"
+#include "io/MetricWarp.h"
 #include "io/TileFiles.h"
 
 #include <cpl_conv.h>
@@ -24,6 +25,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <tuple>
 #include <unistd.h>
@@ -58,7 +60,8 @@ struct BandToMetres {
 // Everything a tile needs to know about the source before it is cut.
 struct Plan {
     std::string path;
-    std::vector<std::string> warp; // GDALWarp options to a VRT; empty: the source's own grid
+    std::vector<std::string> warp; // gdalwarp options of the grid; empty: the source's own grid
+    MetricGridSpec grid;           // the warped grid (io/MetricWarp.h), when `warp` is not empty
     int rows = 0, cols = 0;        // the terrain grid (after any warp)
     BandToMetres band;
     bool georeferenced = false;
@@ -72,41 +75,48 @@ struct Plan {
     std::string checksum;
 };
 
-// A thread's view of the source: the raster, and the warped VRT over it.
+// A thread's view of the source: the raster, and its warp onto the grid
+// (PROJ's transformations are not shared between threads).
 struct Reader {
-    gdal::Dataset source, warped;
+    gdal::Dataset source;
     GDALRasterBandH band = nullptr;
+    std::unique_ptr<MetricWarp> warp;
 };
 
 void open_reader(Reader& r, const Plan& plan, bool warped) {
     if (r.band) return;
     r.source = gdal::open_raster(plan.path);
-    GDALDatasetH ds = r.source.get();
-    if (warped && !plan.warp.empty()) {
-        std::vector<char*> argv;
-        for (const std::string& a : plan.warp) argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
-        GDALWarpAppOptions* o = GDALWarpAppOptionsNew(argv.data(), nullptr);
-        if (!o) throw Error(plan.path, "cannot set up the reprojection: " + gdal::last_error("bad warp options"));
-        GDALDatasetH src = ds;
-        int usage = 0;
-        CPLErrorReset();
-        r.warped.reset(GDALWarp("", nullptr, 1, &src, o, &usage));
-        GDALWarpAppOptionsFree(o);
-        if (!r.warped) throw Error(plan.path, "cannot reproject: " + gdal::last_error("GDALWarp failed"));
-        ds = r.warped.get();
-    }
-    r.band = GDALGetRasterBand(ds, 1);
+    if (warped && !plan.warp.empty()) r.warp = std::make_unique<MetricWarp>(r.source.get(), plan.grid, plan.path);
+    r.band = GDALGetRasterBand(r.source.get(), 1);
 }
 
-// Rows [row0, row0 + rows) x columns [col0, col0 + cols) in metres (kNoData
-// where missing).
+// Rows [row0, row0 + rows) x columns [col0, col0 + cols) of the grid into
+// `z`, `stride` floats a row, as read (kNoData outside a warped source).
+void read_window(const Reader& r, const Plan& plan, int row0, int col0, int rows, int cols, float* z, int stride) {
+    if (rows <= 0 || cols <= 0) return;
+    if (r.warp) {
+        if (stride == cols) return r.warp->read(row0, col0, rows, cols, z);
+        std::vector<float> part(std::size_t(rows) * std::size_t(cols));
+        r.warp->read(row0, col0, rows, cols, part.data());
+        for (int i = 0; i < rows; ++i)
+            std::copy_n(part.data() + std::size_t(i) * cols, cols, z + std::size_t(i) * stride);
+        return;
+    }
+    CPLErrorReset();
+    if (GDALRasterIO(r.band, GF_Read, col0, row0, cols, rows, z, cols, rows, GDT_Float32, 0,
+                     GSpacing(stride) * GSpacing(sizeof(float))) != CE_None)
+        throw Error(plan.path, "unreadable raster: " + gdal::last_error("read failed"));
+}
+
+// As read_window, in metres (kNoData where missing).
+void read_metres(const Reader& r, const Plan& plan, int row0, int col0, int rows, int cols, float* z, int stride) {
+    read_window(r, plan, row0, col0, rows, cols, z, stride);
+    for (int i = 0; i < rows; ++i)
+        for (float *v = z + std::size_t(i) * stride, *end = v + cols; v != end; ++v) *v = plan.band.metres(*v);
+}
 void read_metres(const Reader& r, const Plan& plan, int row0, int col0, int rows, int cols, std::vector<float>& z) {
     z.resize(std::size_t(rows) * std::size_t(cols));
-    CPLErrorReset();
-    if (GDALRasterIO(r.band, GF_Read, col0, row0, cols, rows, z.data(), cols, rows, GDT_Float32, 0, 0) != CE_None)
-        throw Error(plan.path, "unreadable raster: " + gdal::last_error("read failed"));
-    for (float& v : z) v = plan.band.metres(v);
+    read_metres(r, plan, row0, col0, rows, cols, z.data(), cols);
 }
 
 // FNV-1a 64 over 32-bit words in four interleaved lanes (one dependency chain
@@ -157,15 +167,27 @@ void plan_grid(Plan& plan, GDALDatasetH src) {
         const std::vector<std::string> common = metric_warp_options();
         plan.warp.insert(plan.warp.end(), {"-of", "VRT"});
         plan.warp.insert(plan.warp.end(), common.begin(), common.end());
-        Reader r;
-        open_reader(r, plan, true);
-        GDALDatasetH w = r.warped.get();
-        plan.rows = GDALGetRasterYSize(w);
-        plan.cols = GDALGetRasterXSize(w);
-        GDALGetGeoTransform(w, plan.gt.data());
-        const char* ww = GDALGetProjectionRef(w);
-        plan.wkt = ww ? ww : "";
+        // The grid gdalwarp makes (a virtual dataset: no sample is warped here).
+        std::vector<char*> argv;
+        for (const std::string& a : plan.warp) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        GDALWarpAppOptions* o = GDALWarpAppOptionsNew(argv.data(), nullptr);
+        if (!o) throw Error(plan.path, "cannot set up the reprojection: " + gdal::last_error("bad warp options"));
+        int usage = 0;
+        CPLErrorReset();
+        gdal::Dataset w(GDALWarp("", nullptr, 1, &src, o, &usage));
+        GDALWarpAppOptionsFree(o);
+        if (!w) throw Error(plan.path, "cannot reproject: " + gdal::last_error("GDALWarp failed"));
+        plan.rows = GDALGetRasterYSize(w.get());
+        plan.cols = GDALGetRasterXSize(w.get());
+        GDALGetGeoTransform(w.get(), plan.gt.data());
+        const char* ww = GDALGetProjectionRef(w.get());
+        plan.wkt = warped_crs_wkt(ww ? ww : "");
         plan.georeferenced = true;
+        plan.grid.gt = plan.gt;
+        plan.grid.cols = plan.cols;
+        plan.grid.rows = plan.rows;
+        if (srs && OSRIsGeographic(srs)) plan.grid.wkt = plan.warp[1]; // -t_srs WKT
         hs = std::abs(plan.gt[1]);
     }
     if (srs) {
@@ -271,8 +293,16 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int 
         const int br0 = std::max(0, r0 - d), br1 = std::min(plan.rows - 1, r1 + d);
         const int bc0 = std::max(0, c0 - d), bc1 = std::min(plan.cols - 1, c1 + d);
         const int bh = br1 - br0 + 1, bw = bc1 - bc0 + 1;
-        std::vector<float> big;
-        read_metres(rd, plan, br0, bc0, bh, bw, big);
+        // The window already read, and the ring around it: a sample reads
+        // the same whatever window holds it (io/MetricWarp.h), so the window
+        // is not warped twice.
+        std::vector<float> big(std::size_t(bh) * std::size_t(bw));
+        float* at = big.data() + std::size_t(r0 - br0) * bw + std::size_t(c0 - bc0);
+        for (int i = 0; i < h; ++i) std::copy_n(z.data() + std::size_t(i) * w, w, at + std::size_t(i) * bw);
+        read_metres(rd, plan, br0, bc0, r0 - br0, bw, big.data(), bw);                                        // above
+        read_metres(rd, plan, r1 + 1, bc0, br1 - r1, bw, big.data() + std::size_t(r1 + 1 - br0) * bw, bw);    // below
+        read_metres(rd, plan, r0, bc0, h, c0 - bc0, big.data() + std::size_t(r0 - br0) * bw, bw);             // left
+        read_metres(rd, plan, r0, c1 + 1, h, bc1 - c1, at + w, bw);                                           // right
         gdal::Dataset mem = gdal::create_mem(plan.path, bw, bh, 1, GDT_Float32);
         GDALRasterBandH band = GDALGetRasterBand(mem.get(), 1);
         GDALSetRasterNoDataValue(band, kNoData);

@@ -12,9 +12,10 @@
 //      (the height mapping and the colour ramp need the whole range), the
 //      no-data count and a checksum;
 //   2. each tile reads the window of its samples and apron plus one sample
-//      (the hill shading's 3x3); a window holding no-data is read again with
-//      the no-data search distance (256 samples) around it and filled there
-//      by GDALFillNodata as the loader fills the whole raster.
+//      (the hill shading's 3x3); a window holding no-data is widened by
+//      the no-data search distance (256 samples), reading only the ring
+//      around it, and filled there by GDALFillNodata as the loader fills the
+//      whole raster.
 // What equals the in-memory tiler, and what does not:
 //   - a source on square cells of a projected CRS (or none) without no-data:
 //     every tile, apron, d2, overview file byte-identical;
@@ -25,12 +26,12 @@
 //     outside a reprojected source); the loader searches the whole raster
 //     for a void enclosed by data wider than that, which a window cannot see
 //     (every tile must give a shared sample the same value);
-//   - a geographic raster, or one with rotated or non-square cells, is read
-//     through a warped VRT (GDALWarp to VRT, the loader's options with the
-//     exact transformer, io/GdalSource.h metric_warp_options), so a sample's
-//     value does not depend on which tile reads it; the height mapping and
-//     the colour ramp span the source's range, as the loader's do: the same
-//     tiles, byte for byte;
+//   - a geographic raster, or one with rotated or non-square cells, is
+//     warped per window as the loader warps the whole grid (io/MetricWarp.h:
+//     PROJ on a lattice fixed over the whole grid, one resampling scale), so
+//     a sample's value does not depend on which window reads it; the height
+//     mapping and the colour ramp span the source's range, as the loader's
+//     do: the same tiles, byte for byte;
 //   - index.json's checksum is FNV-1a 64 of the source's elevations in
 //     metres (row by row) and the plan, not of the loaded terrain: it is
 //     known before any tile is cut, as a run in parts needs it.

@@ -140,9 +140,9 @@ TEST(TileWindows, RealDemGivesTheSameTiles) {
     expect_same_files(scratch / "win", scratch / "ref", false);
 }
 
-// Warped per block of a VRT rather than whole, with the exact transformer
-// and the source's range as the height mapping: the same tiles as the loaded
-// terrain's, for a geographic raster and for one on non-square cells.
+// Warped per window rather than whole (io/MetricWarp.h), with the source's
+// range as the height mapping: the same tiles as the loaded terrain's, for a
+// geographic raster and for one on non-square cells.
 TEST(TileWindows, WarpedDemsGiveTheSameTiles) {
     test::ScratchDir scratch;
     for (const bool geographic : {true, false}) {
