@@ -81,6 +81,14 @@ void Compositor::begin(const Camera& camera, const Environment& environment, con
 CompositeCounts Compositor::draw(const MethodOutput& out, const Camera& camera, const Environment& environment,
                                  RenderTarget& target, StepTimer& timer, const CompositeOptions& options) {
     if (out.kind == MethodOutputKind::Resident) prepare(out.surface); // uploads are not part of a frame
+    if (out.kind == MethodOutputKind::Mesh && out.tile_imagery) {
+        timer.begin_gl("imagery_tiles");
+        tiled_imagery_.update(*out.tile_imagery);
+        timer.end_gl();
+        frame_.set_tile_imagery(tiled_imagery_.uniform(), tiled_imagery_.size_uniform());
+    } else {
+        frame_.set_tile_imagery(glm::vec4(0.0f), glm::vec4(0.0f));
+    }
     begin(camera, environment, target, timer);
     CompositeCounts counts;
     if (out.kind == MethodOutputKind::Images) {

@@ -48,6 +48,7 @@
 #include "gl/ObjectShadowMap.h"
 #include "gl/RenderTarget.h"
 #include "gl/ImageryTexture.h"
+#include "gl/TiledImageryTexture.h"
 #include "gl/ShadowCeilingTexture.h"
 #include "gl/ShadowScreenPass.h"
 #include "gl/SkyPass.h"
@@ -112,6 +113,7 @@ private:
     ObjectShadowMap object_shadow_;
     ShadowScreenPass object_shadow_pass_;
     ImageryTexture imagery_texture_;
+    TiledImageryTexture tiled_imagery_;
     SkyPass sky_;
     WaterPlane water_{terrain_};
     ObjectRenderer objects_;

@@ -24,6 +24,7 @@ struct FrameBlock {
     glm::vec4 shadow; // ShadowCeilingTexture::uniform(), or 0: no terrain shadows
     glm::vec4 look;   // x: 1 while baked surfaces are drawn, y: 1 while the terrain is (set_terrain_pass)
     glm::vec4 imagery; // ImageryTexture::uniform(), or 0: no imagery finer than the samples
+    glm::vec4 tile_imagery, tile_imagery_size; // TiledImageryTexture::uniform(), size_uniform(); 0: none
 };
 
 class FrameUniforms {
@@ -37,6 +38,11 @@ public:
     void set_shadow(const glm::vec4& shadow) { block_.shadow = shadow; }
     // The imagery of the next update()s (ImageryTexture::uniform(), 0 = none).
     void set_imagery(const glm::vec4& imagery) { block_.imagery = imagery; }
+    // The imagery tiles of the next update()s (TiledImageryTexture, 0 = none).
+    void set_tile_imagery(const glm::vec4& tiles, const glm::vec4& size) {
+        block_.tile_imagery = tiles;
+        block_.tile_imagery_size = size;
+    }
     // Whether what is drawn next is the terrain, and baked (no sun on it): updates the block.
     void set_terrain_pass(bool terrain, bool baked);
     // Binds the block to uniform binding 0.

@@ -50,6 +50,9 @@ layout(std140, binding = 0) uniform Frame {
     vec4 look;         // x: 1 = what is drawn now is baked (the terrain's colors with --lighting baked): no sun;
                        // y: 1 = what is drawn now is the terrain
     vec4 imagery;      // 1 / extent x, 1 / extent z, origin x, z of the imagery (ImageryTexture); 0: none
+    vec4 tile_imagery; // imagery tiles (TiledImageryTexture): 1 / tile world size, coarsest level, page
+                       // table's first tile column and row; 0: none
+    vec4 tile_imagery_size; // 1 / world width, 1 / world depth of a tile's texels, texels across, down
 };
 // The terrain's shadow ceiling (core/HorizonSweep.h), one texel per sample.
 layout(binding = 7) uniform sampler2D shadow_ceiling;
@@ -62,6 +65,11 @@ layout(std140, binding = 3) uniform ObjectShadow {
 layout(binding = 8) uniform sampler2DShadow object_shadow_map;
 // The terrain's imagery, mipmapped (core/ImageryPyramid.h), over its world rectangle.
 layout(binding = 10) uniform sampler2D imagery_texture;
+// The imagery tiles near the viewer (gl/TiledImageryTexture.h): a layer per
+// tile, and per tile of the page table its layer + 1 (0: none) and the world
+// x, z of its first texel.
+layout(binding = 11) uniform sampler2DArray imagery_tiles;
+layout(binding = 12) uniform sampler2D imagery_pages;
 
 vec4 clip_of(vec3 world) { return view_proj * vec4(world - eye.xyz, 1.0); }
 
@@ -127,9 +135,27 @@ float object_sun_visible(vec3 world) {
 }
 // A terrain fragment's albedo: the imagery at its world (x, z) when the
 // terrain has imagery finer than its samples (whose per-vertex colors are
-// that imagery averaged), else the vertex color.
+// that imagery averaged), else the vertex color. With imagery tiles, the
+// fragment's tile's layer, sampled with the gradients of the world position
+// (continuous across tiles, unlike the tiles' texture coordinates), handed
+// over to the vertex color over the level after the tile's coarsest.
 vec3 terrain_albedo(vec3 albedo, vec3 world) {
+    vec2 dx = dFdx(world.xz), dy = dFdy(world.xz);
     if (imagery.x > 0.0 && look.y > 0.0) return texture(imagery_texture, (world.xz - imagery.zw) * imagery.xy).rgb;
+    if (tile_imagery.x > 0.0 && look.y > 0.0) {
+        ivec2 t = ivec2(floor(world.xz * tile_imagery.x)) - ivec2(tile_imagery.zw);
+        if (all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, textureSize(imagery_pages, 0)))) {
+            vec4 page = texelFetch(imagery_pages, t, 0);
+            if (page.x > 0.0) {
+                vec2 s = tile_imagery_size.xy;
+                vec2 gx = dx * s, gy = dy * s;
+                vec2 tx = gx * tile_imagery_size.zw, ty = gy * tile_imagery_size.zw;
+                float lod = 0.5 * log2(max(max(dot(tx, tx), dot(ty, ty)), 1e-12));
+                vec3 c = textureGrad(imagery_tiles, vec3((world.xz - page.yz) * s, page.x - 1.0), gx, gy).rgb;
+                return mix(c, albedo, clamp(lod - tile_imagery.y, 0.0, 1.0));
+            }
+        }
+    }
     return albedo;
 }
 // Lambert sun + ambient (hovercraft sun lighting; core/SunLight.h is the same
