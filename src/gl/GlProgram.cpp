@@ -139,11 +139,18 @@ float object_sun_visible(vec3 world) {
 // fragment's tile's layer, sampled with the gradients of the world position
 // (continuous across tiles, unlike the tiles' texture coordinates), handed
 // over to the vertex color over the level after the tile's coarsest.
+// The tile (column, row) whose imagery a terrain fragment samples: set by a
+// mesh whose triangles each belong to one tile (StreamedMesh); -1: the tile
+// under the fragment.
+ivec2 albedo_tile = ivec2(-1);
 vec3 terrain_albedo(vec3 albedo, vec3 world) {
+#ifdef OVERFLIGHT_FRAGMENT_STAGE
     vec2 dx = dFdx(world.xz), dy = dFdy(world.xz);
+#endif
     if (imagery.x > 0.0 && look.y > 0.0) return texture(imagery_texture, (world.xz - imagery.zw) * imagery.xy).rgb;
+#ifdef OVERFLIGHT_FRAGMENT_STAGE
     if (tile_imagery.x > 0.0 && look.y > 0.0) {
-        ivec2 t = ivec2(floor(world.xz * tile_imagery.x)) - ivec2(tile_imagery.zw);
+        ivec2 t = (albedo_tile.x >= 0 ? albedo_tile : ivec2(floor(world.xz * tile_imagery.x))) - ivec2(tile_imagery.zw);
         if (all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, textureSize(imagery_pages, 0)))) {
             vec4 page = texelFetch(imagery_pages, t, 0);
             if (page.x > 0.0) {
@@ -156,6 +163,7 @@ vec3 terrain_albedo(vec3 albedo, vec3 world) {
             }
         }
     }
+#endif
     return albedo;
 }
 // Lambert sun + ambient (hovercraft sun lighting; core/SunLight.h is the same
@@ -174,8 +182,10 @@ namespace {
 
 GLuint compile(const char* name, GLenum stage, const char* source) {
     const GLuint s = glCreateShader(stage);
-    const char* parts[] = {"#version 450 core\n", kFrameGlsl, source};
-    glShaderSource(s, 3, parts, nullptr);
+    // Derivatives (terrain_albedo's imagery tiles) exist in fragment shaders only.
+    const char* stage_define = stage == GL_FRAGMENT_SHADER ? "#define OVERFLIGHT_FRAGMENT_STAGE 1\n" : "";
+    const char* parts[] = {"#version 450 core\n", stage_define, kFrameGlsl, source};
+    glShaderSource(s, 4, parts, nullptr);
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);

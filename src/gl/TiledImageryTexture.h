@@ -3,10 +3,13 @@
 // one mipmapped RGBA texture array (texture unit 11), a layer per tile, and
 // a page table (unit 12) over the frame's tiles' rectangle of the tile grid
 // giving each tile's layer and the world position of its first texel.
-// terrain_albedo() in kFrameGlsl finds a fragment's tile from its world
-// (x, z), samples the tile's layer with gradients taken from world
-// positions (continuous across tiles, so no seam drops to a coarse level;
-// anisotropic where the GL offers it) and hands over to the per-vertex
+// terrain_albedo() in kFrameGlsl takes a fragment's tile from its triangle
+// (StreamedMesh's per-vertex tile, MeshArrays::tiles: one tile per
+// triangle, so the texture coordinates' derivatives never mix two tiles'
+// origins, which with anisotropic filtering drew a line of coarse texels
+// along every seam on Mesa), samples the tile's layer (trilinear,
+// anisotropic where the GL offers it; the tile holds its neighbours'
+// texels for a margin around its cells) and hands over to the per-vertex
 // colors past the tile's coarsest level, as the whole-terrain imagery
 // (ImageryTexture) shows the same texels.
 //

@@ -350,6 +350,9 @@ void TileSet::draw(const Camera& camera, double c_rottger, const Frustum& frustu
             q.set_neighbour(RottgerQuadtree::West, at(p.row, p.col - 1));
             q.set_neighbour(RottgerQuadtree::East, at(p.row, p.col + 1));
             stats.triangles += q.append_fans(out);
+            // With imagery tiles, each vertex names its tile (MeshArrays::tiles).
+            if (imagery_loader_)
+                out.tiles.resize(out.positions.size(), (std::uint32_t(p.row) << 16) | std::uint32_t(p.col));
         }
         stats.ms_fans += ms_since(t1);
     }
