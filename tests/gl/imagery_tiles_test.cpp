@@ -123,10 +123,14 @@ TEST(ImageryTiles, QuadtreeOverTiledOlindaShowsTheLandsatDetail) {
     const double x = 0.5 * t.width(), z = 0.75 * t.depth();
     const Camera cam =
         test::camera_at({x, t.height_bilinear(float(x), float(z)) + 600.0, z}, 180.0, -25.0, 1.5 * t.width(), 480, 300);
-    gl::HeadlessRenderer rt(tiled.terrain, Scene{}), rp(plain.terrain, Scene{}), rw(whole.terrain, Scene{});
-    const Frame fine = render(tiled, rt, "quadtree", cam, with);
-    const Frame coarse = render(plain, rp, "quadtree", cam, without);
-    const Frame mesh = render(whole, rw, "mesh", cam, "");
+    // One renderer (and GL context) at a time.
+    const auto frame = [&](const DataSet& d, const char* method, const std::string& dir) {
+        gl::HeadlessRenderer r(d.terrain, Scene{});
+        return render(d, r, method, cam, dir);
+    };
+    const Frame fine = frame(tiled, "quadtree", with);
+    const Frame coarse = frame(plain, "quadtree", without);
+    const Frame mesh = frame(whole, "mesh", "");
     const char* out = std::getenv("OVERFLIGHT_TEST_PNG_DIR");
     if (out) {
         write_png(std::string(out) + "/quadtree_imagery_tiles.png", fine.color);
@@ -140,6 +144,7 @@ TEST(ImageryTiles, QuadtreeOverTiledOlindaShowsTheLandsatDetail) {
                 fine.tiles->imagery_loaded);
     std::printf("  high-frequency energy: quadtree with imagery tiles %.1f / without %.1f = %.2fx\n", e, e0, e / e0);
     std::printf("  mean color difference to the in-memory imagery's mesh: %.2f\n", diff);
+    std::fflush(stdout);
     EXPECT_GT(fine.tiles->imagery_tiles, 0);
     EXPECT_GT(terrain_pixels(fine), 480 * 300 / 2);
     EXPECT_GE(e, 2.0 * e0);
