@@ -54,7 +54,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
 
 std::unique_ptr<TileSet> tile_directory_tiles(const std::string& tile_dir, std::size_t memory_bound) {
     const TileIndex index = read_tile_index(tile_dir);
-    return std::make_unique<TileSet>(index.grid, tile_directory_loader(tile_dir, index), memory_bound);
+    auto tiles = std::make_unique<TileSet>(index.grid, tile_directory_loader(tile_dir, index), memory_bound);
+    // The imagery tiles stream with the heights, within a bound of their own as large.
+    if (index.imagery.present())
+        tiles->set_imagery(index.imagery, tile_directory_imagery_loader(tile_dir, index), memory_bound);
+    return tiles;
 }
 
 namespace {

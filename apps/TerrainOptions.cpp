@@ -17,7 +17,8 @@ void add_terrain_options(CLI::App& cmd, TerrainArgs& args) {
                    "color raster for a GDAL DEM (orthophoto, Landsat bands 3,2,1, ...): kept at its own resolution "
                    "when finer than the DEM, else resampled onto the DEM grid");
     cmd.add_option("--imagery-memory-mib", args.load.imagery_memory_mib,
-                   "imagery finer than the DEM (with its mip levels) beyond this many MiB is read decimated (1..1048576)")
+                   "imagery finer than the DEM (with its mip levels) beyond this many MiB is shown decimated, with a warning; "
+                   "`overflight tile DEM --color IMAGERY -o DIR` keeps it whole in tiles (1..1048576)")
         ->transform(decimal<int>())
         ->capture_default_str();
     cmd.add_option("--demo-size", args.load.demo_size, "samples per side of the demo island (2^n+1, 33..16385)")

@@ -40,7 +40,8 @@ void add_tile_command(CLI::App& app) {
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand(
-        "tile", "Cut a terrain into overlapping 2^k+1 tiles (16-bit GeoTIFF heights + RGB GeoTIFF colors) and index.json");
+        "tile", "Cut a terrain into overlapping 2^k+1 tiles (16-bit GeoTIFF heights + RGB GeoTIFF colors, and RGBA imagery "
+        "tiles at the imagery's own resolution when it is finer than the DEM) and index.json");
     add_terrain_options(*cmd, args->terrain);
     cmd->get_option("terrain")->required(false);
     cmd->add_option("-o,--output", args->out, "output folder (created; a re-run resumes an interrupted tiling)");
@@ -77,10 +78,15 @@ void add_tile_command(CLI::App& app) {
         std::signal(SIGTERM, request_stop);
         const std::string& terrain = args->terrain.terrain;
         std::error_code ec;
-        const bool windowed = terrain != "demo" && !std::filesystem::is_directory(terrain, ec) &&
-                              args->terrain.load.color_path.empty();
+        const std::string& color = args->terrain.load.color_path;
+        const bool raster_file = terrain != "demo" && !std::filesystem::is_directory(terrain, ec);
+        // Imagery finer than a georeferenced DEM is tiled at its own
+        // resolution in windows too; other colors are resampled onto the
+        // DEM's grid in memory.
+        const bool windowed = raster_file && (color.empty() || windowed_imagery_applies(terrain, color));
         if (!args->part.empty() && !windowed)
-            throw Error("--part", "tiles a raster file in parts; the demo, a data set or --color are tiled whole");
+            throw Error("--part", "tiles a raster file in parts; the demo, a data set or --color not finer than a "
+                                  "georeferenced DEM are tiled whole");
         TileWriteReport r;
         if (windowed) {
             WindowedTileOptions w;
@@ -88,13 +94,19 @@ void add_tile_command(CLI::App& app) {
             w.memory_bytes = std::int64_t(args->memory_mib) << 20;
             if (!args->part.empty()) w.part = parse_tile_part(args->part);
             w.warn = [&](const std::string& warning) { print_warning(terrain, warning); };
+            w.color_path = color;
             r = tile_raster_in_windows(terrain, args->out, w);
         } else {
             r = write_tile_directory(load_terrain(args->terrain), args->out, o);
         }
-        std::printf("%s: %dx%d tiles of %d samples, %d written, %d already done, %d without data (flag 0)%s\n",
-                    args->out.c_str(), r.index.grid.tile_rows, r.index.grid.tile_cols, r.index.grid.tile_size, r.written,
-                    r.skipped, r.empty, r.index.complete ? "" : "; index.json waits for the other parts");
+        std::string imagery;
+        if (r.index.imagery.present())
+            imagery = ", imagery " + std::to_string(r.index.imagery.cols) + "x" + std::to_string(r.index.imagery.rows) +
+                      " texels per tile with " + std::to_string(r.index.imagery.levels) + " levels";
+        std::printf("%s: %dx%d tiles of %d samples%s, %d written, %d already done, %d without data (flag 0)%s\n",
+                    args->out.c_str(), r.index.grid.tile_rows, r.index.grid.tile_cols, r.index.grid.tile_size,
+                    imagery.c_str(), r.written, r.skipped, r.empty,
+                    r.index.complete ? "" : "; index.json waits for the other parts");
     });
 }
 

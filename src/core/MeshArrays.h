@@ -16,8 +16,12 @@ struct MeshArrays {
     std::vector<glm::vec3> normals;  // unit, one per position
     std::vector<Rgb8> colors;        // one per position
     std::vector<std::uint32_t> indices; // triangle list, counter-clockwise seen from above
+    // Optional, empty or one per position: the tile a vertex belongs to, as
+    // (row << 16) | column (lod/TileSet.h with imagery tiles), so that each
+    // triangle samples one tile's imagery.
+    std::vector<std::uint32_t> tiles;
     std::size_t triangle_count() const { return indices.size() / 3; }
-    void clear() { positions.clear(); normals.clear(); colors.clear(); indices.clear(); }
+    void clear() { positions.clear(); normals.clear(); colors.clear(); indices.clear(); tiles.clear(); }
 };
 
 } // namespace overflight

@@ -34,7 +34,8 @@ void depth_test_on() {
 
 } // namespace
 
-Compositor::Compositor(const Terrain& terrain, const Scene& scene) : terrain_(terrain), vehicle_(terrain) {
+Compositor::Compositor(const Terrain& terrain, const Scene& scene)
+    : terrain_(terrain), terrain_min_(terrain.min_height()), vehicle_(terrain) {
     objects_.set_scene(scene, terrain);
     if (const ImageryPyramid* imagery = terrain.imagery()) imagery_texture_.upload(*imagery);
 }
@@ -124,7 +125,7 @@ PixelRect Compositor::object_shadow_rect(const Camera& camera, const Environment
     if (options.vehicle) casters.push_back(vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading));
     if (casters.empty()) return {};
     // The pixels an object's shadow can reach, down to the lowest terrain.
-    return screen_rect(ObjectShadowMap::reach(casters, sun, terrain_.min_height()), camera);
+    return screen_rect(ObjectShadowMap::reach(casters, sun, terrain_min_), camera);
 }
 
 PixelRect Compositor::depth_rect(const Camera& camera, const Environment& environment,
@@ -151,6 +152,14 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
         if (!images_ || images_->width() != camera.width || images_->height() != camera.height)
             images_ = std::make_unique<RenderTarget>(camera.width, camera.height);
         into = images_.get();
+    }
+    if (out && out->kind == MethodOutputKind::Mesh && out->tile_imagery) {
+        timer.begin_gl("imagery_tiles");
+        tiled_imagery_.update(*out->tile_imagery);
+        timer.end_gl();
+        frame_.set_tile_imagery(tiled_imagery_.uniform(), tiled_imagery_.size_uniform());
+    } else {
+        frame_.set_tile_imagery(glm::vec4(0.0f), glm::vec4(0.0f));
     }
     begin(camera, environment, *into, timer, options);
     CompositeCounts counts;

@@ -55,6 +55,7 @@
 #include "gl/RenderTarget.h"
 #include "gl/ImageStream.h"
 #include "gl/ImageryTexture.h"
+#include "gl/TiledImageryTexture.h"
 #include "gl/ShadowCeilingTexture.h"
 #include "gl/ShadowScreenPass.h"
 #include "gl/SkyPass.h"
@@ -138,6 +139,7 @@ private:
     long long draw_surface(const MethodOutput& out, const Camera& camera, StepTimer& timer, CompositeCounts& counts);
 
     const Terrain& terrain_;
+    const float terrain_min_; // Terrain::min_height(), which reads every sample
     FrameUniforms frame_;
     ShadowCeiling shadow_;
     bool shadow_valid_ = false;
@@ -147,6 +149,7 @@ private:
                                     ObjectShadowMap::kVehicleSize};
     ShadowScreenPass object_shadow_pass_;
     ImageryTexture imagery_texture_;
+    TiledImageryTexture tiled_imagery_;
     SkyPass sky_;
     WaterPlane water_{terrain_};
     ObjectRenderer objects_;

@@ -36,7 +36,10 @@ void FrameUniforms::update(const Camera& camera, const Environment& env, const T
     const double fp = camera.focal_px();
     const double shift = camera.projection == Projection::Shear ? fp * std::tan(glm::radians(camera.pitch)) : 0.0;
     block_.image = glm::vec4(float(camera.width), float(camera.height), float(fp), float(shift));
-    block_.grid = glm::vec4(terrain.h_scale(), terrain.min_height(), float(terrain.rows()), float(terrain.cols()));
+    if (&terrain != grid_terrain_) { // Terrain::min_height() reads every sample: once per terrain
+        grid_terrain_ = &terrain;
+        block_.grid = glm::vec4(terrain.h_scale(), terrain.min_height(), float(terrain.rows()), float(terrain.cols()));
+    }
     if (env.atmosphere) {
         const AerialFrame air = aerial_frame(env, camera.eye.y);
         block_.air_beta = glm::vec4(glm::vec3(air.beta * air.eye_density), float(air.scale_height));

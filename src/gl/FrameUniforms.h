@@ -27,6 +27,7 @@ struct FrameBlock {
     glm::vec4 underwater;       // x: 1 = the eye is under Environment::water's level, y: that level
     glm::vec4 water_absorption; // rgb: kWaterAbsorption (core/WaterSurface.h)
     glm::vec4 water_deep;       // rgb: water_deep_light()
+    glm::vec4 tile_imagery, tile_imagery_size; // TiledImageryTexture::uniform(), size_uniform(); 0: none
 };
 
 class FrameUniforms {
@@ -35,11 +36,18 @@ public:
     // Fills the block for one frame. view_proj is computed in double as
     // projection_matrix() * view_matrix() * translate(eye) and rounded once to
     // float; shaders transform (world - eye) with it (clip_of() in kFrameGlsl).
+    // The terrain's grid is read at the first update() with it: its samples
+    // must not change while this object draws it.
     void update(const Camera& camera, const Environment& env, const Terrain& terrain);
     // The terrain shadows of the next update()s (ShadowCeilingTexture::uniform(), 0 = none).
     void set_shadow(const glm::vec4& shadow) { block_.shadow = shadow; }
     // The imagery of the next update()s (ImageryTexture::uniform(), 0 = none).
     void set_imagery(const glm::vec4& imagery) { block_.imagery = imagery; }
+    // The imagery tiles of the next update()s (TiledImageryTexture, 0 = none).
+    void set_tile_imagery(const glm::vec4& tiles, const glm::vec4& size) {
+        block_.tile_imagery = tiles;
+        block_.tile_imagery_size = size;
+    }
     // Whether what is drawn next is the terrain, and baked (no sun on it): updates the block.
     void set_terrain_pass(bool terrain, bool baked);
     // Binds the block to uniform binding 0.
@@ -48,6 +56,7 @@ public:
 
 private:
     FrameBlock block_{};
+    const Terrain* grid_terrain_ = nullptr; // whose grid block_.grid holds
     Buffer ubo_;
 };
 

@@ -53,6 +53,9 @@ layout(std140, binding = 0) uniform Frame {
     vec4 underwater;       // x: 1 = the eye is under the water, y: the water's level
     vec4 water_absorption; // rgb: per world unit of water path
     vec4 water_deep;       // rgb: the deep water's light
+    vec4 tile_imagery; // imagery tiles (TiledImageryTexture): 1 / tile world size, coarsest level, page
+                       // table's first tile column and row; 0: none
+    vec4 tile_imagery_size; // 1 / world width, 1 / world depth of a tile's texels, texels across, down
 };
 // The terrain's shadow ceiling (core/HorizonSweep.h), one texel per sample.
 layout(binding = 7) uniform sampler2D shadow_ceiling;
@@ -72,6 +75,11 @@ layout(std140, binding = 4) uniform VehicleShadow {
 layout(binding = 11) uniform sampler2DShadow vehicle_shadow_map;
 // The terrain's imagery, mipmapped (core/ImageryPyramid.h), over its world rectangle.
 layout(binding = 10) uniform sampler2D imagery_texture;
+// The imagery tiles near the viewer (gl/TiledImageryTexture.h): a layer per
+// tile, and per tile of the page table its layer + 1 (0: none) and the world
+// x, z of its first texel.
+layout(binding = 12) uniform sampler2DArray imagery_tiles;
+layout(binding = 13) uniform sampler2D imagery_pages;
 
 vec4 clip_of(vec3 world) { return view_proj * vec4(world - eye.xyz, 1.0); }
 
@@ -156,9 +164,35 @@ float object_sun_visible(vec3 world) {
 }
 // A terrain fragment's albedo: the imagery at its world (x, z) when the
 // terrain has imagery finer than its samples (whose per-vertex colors are
-// that imagery averaged), else the vertex color.
+// that imagery averaged), else the vertex color. With imagery tiles, the
+// fragment's tile's layer, sampled with the gradients of the world position
+// (continuous across tiles, unlike the tiles' texture coordinates), handed
+// over to the vertex color over the level after the tile's coarsest.
+// The tile (column, row) whose imagery a terrain fragment samples: set by a
+// mesh whose triangles each belong to one tile (StreamedMesh); -1: the tile
+// under the fragment.
+ivec2 albedo_tile = ivec2(-1);
 vec3 terrain_albedo(vec3 albedo, vec3 world) {
+#ifdef OVERFLIGHT_FRAGMENT_STAGE
+    vec2 dx = dFdx(world.xz), dy = dFdy(world.xz);
+#endif
     if (imagery.x > 0.0 && look.y > 0.0) return texture(imagery_texture, (world.xz - imagery.zw) * imagery.xy).rgb;
+#ifdef OVERFLIGHT_FRAGMENT_STAGE
+    if (tile_imagery.x > 0.0 && look.y > 0.0) {
+        ivec2 t = (albedo_tile.x >= 0 ? albedo_tile : ivec2(floor(world.xz * tile_imagery.x))) - ivec2(tile_imagery.zw);
+        if (all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, textureSize(imagery_pages, 0)))) {
+            vec4 page = texelFetch(imagery_pages, t, 0);
+            if (page.x > 0.0) {
+                vec2 s = tile_imagery_size.xy;
+                vec2 gx = dx * s, gy = dy * s;
+                vec2 tx = gx * tile_imagery_size.zw, ty = gy * tile_imagery_size.zw;
+                float lod = 0.5 * log2(max(max(dot(tx, tx), dot(ty, ty)), 1e-12));
+                vec3 c = textureGrad(imagery_tiles, vec3((world.xz - page.yz) * s, page.x - 1.0), gx, gy).rgb;
+                return mix(c, albedo, clamp(lod - tile_imagery.y, 0.0, 1.0));
+            }
+        }
+    }
+#endif
     return albedo;
 }
 // Lambert sun + ambient (hovercraft sun lighting; core/SunLight.h is the same
@@ -177,8 +211,10 @@ namespace {
 
 GLuint compile(const char* name, GLenum stage, const char* source) {
     const GLuint s = glCreateShader(stage);
-    const char* parts[] = {"#version 450 core\n", kFrameGlsl, source};
-    glShaderSource(s, 3, parts, nullptr);
+    // Derivatives (terrain_albedo's imagery tiles) exist in fragment shaders only.
+    const char* stage_define = stage == GL_FRAGMENT_SHADER ? "#define OVERFLIGHT_FRAGMENT_STAGE 1\n" : "";
+    const char* parts[] = {"#version 450 core\n", stage_define, kFrameGlsl, source};
+    glShaderSource(s, 4, parts, nullptr);
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);

@@ -14,14 +14,32 @@ const char* const kMeshVs = R"(
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in vec3 color;
+layout(location = 3) in uint tile;
 out vec3 v_world;
 out vec3 v_normal;
 out vec3 v_color;
+flat out uint v_tile;
 void main() {
     v_world = position;
     v_normal = normal;
     v_color = color;
+    v_tile = tile;
     gl_Position = clip_of(position);
+}
+)";
+
+// kLitFragmentGlsl, with the triangle's tile for the imagery tiles: one
+// tile for every fragment of a triangle, so that the derivatives of its
+// texture coordinates never mix two tiles.
+const char* const kMeshFs = R"(
+in vec3 v_world;
+in vec3 v_normal;
+in vec3 v_color;
+flat in uint v_tile;
+out vec4 frag;
+void main() {
+    albedo_tile = ivec2(int(v_tile & 0xFFFFu), int(v_tile >> 16));
+    frag = vec4(shade(v_color, v_normal, v_world), 1.0);
 }
 )";
 
@@ -48,7 +66,7 @@ void main() { frag = vec4(fogged(v_color, v_world), 1.0); }
 
 StreamedMesh::StreamedMesh()
     : positions_(make_buffer()), normals_(make_buffer()), colors_(make_buffer()), indices_(make_buffer()),
-      vao_(make_vertex_array()), program_(make_program("streamed-mesh", kMeshVs, kLitFragmentGlsl)) {
+      tiles_(make_buffer()), vao_(make_vertex_array()), program_(make_program("streamed-mesh", kMeshVs, kMeshFs)) {
     glEnableVertexArrayAttrib(vao_.get(), 0);
     glVertexArrayAttribFormat(vao_.get(), 0, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(vao_.get(), 0, 0);
@@ -58,6 +76,9 @@ StreamedMesh::StreamedMesh()
     glEnableVertexArrayAttrib(vao_.get(), 2);
     glVertexArrayAttribFormat(vao_.get(), 2, 3, GL_UNSIGNED_BYTE, GL_TRUE, 0);
     glVertexArrayAttribBinding(vao_.get(), 2, 2);
+    glEnableVertexArrayAttrib(vao_.get(), 3);
+    glVertexArrayAttribIFormat(vao_.get(), 3, 1, GL_UNSIGNED_INT, 0);
+    glVertexArrayAttribBinding(vao_.get(), 3, 3);
 }
 
 void StreamedMesh::ensure(Buffer& buffer, std::size_t& capacity, std::size_t bytes) {
@@ -75,12 +96,21 @@ void StreamedMesh::upload(const MeshArrays& mesh) {
     if (mesh.normals.size() != n || mesh.colors.size() != n)
         throw Error("mesh", "normals and colors must have one entry per position");
     if (mesh.indices.size() % 3 != 0) throw Error("mesh", "index count is not a multiple of 3");
+    if (!mesh.tiles.empty() && mesh.tiles.size() != n) throw Error("mesh", "tiles must be empty or one per position");
     if (!mesh.indices.empty() && *std::max_element(mesh.indices.begin(), mesh.indices.end()) >= n)
         throw Error("mesh", "index out of range of " + std::to_string(n) + " positions");
     ensure(positions_, cap_positions_, n * sizeof(glm::vec3));
     ensure(normals_, cap_normals_, n * sizeof(glm::vec3));
     ensure(colors_, cap_colors_, n * sizeof(Rgb8));
     ensure(indices_, cap_indices_, mesh.indices.size() * sizeof(std::uint32_t));
+    // Without tiles, every vertex names tile (0, 0); the shader reads it only with imagery tiles.
+    ensure(tiles_, cap_tiles_, n * sizeof(std::uint32_t));
+    if (n && mesh.tiles.empty()) {
+        const std::uint32_t zero = 0;
+        glClearNamedBufferSubData(tiles_.get(), GL_R32UI, 0, GLsizeiptr(n * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    } else if (n) {
+        glNamedBufferSubData(tiles_.get(), 0, GLsizeiptr(n * 4), mesh.tiles.data());
+    }
     if (n) {
         glNamedBufferSubData(positions_.get(), 0, GLsizeiptr(n * sizeof(glm::vec3)), mesh.positions.data());
         glNamedBufferSubData(normals_.get(), 0, GLsizeiptr(n * sizeof(glm::vec3)), mesh.normals.data());
@@ -93,6 +123,7 @@ void StreamedMesh::upload(const MeshArrays& mesh) {
     glVertexArrayVertexBuffer(vao_.get(), 0, positions_.get(), 0, sizeof(glm::vec3));
     glVertexArrayVertexBuffer(vao_.get(), 1, normals_.get(), 0, sizeof(glm::vec3));
     glVertexArrayVertexBuffer(vao_.get(), 2, colors_.get(), 0, sizeof(Rgb8));
+    glVertexArrayVertexBuffer(vao_.get(), 3, tiles_.get(), 0, sizeof(std::uint32_t));
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
 }
 

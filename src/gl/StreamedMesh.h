@@ -26,8 +26,8 @@ public:
 
 private:
     void ensure(Buffer& buffer, std::size_t& capacity, std::size_t bytes);
-    Buffer positions_, normals_, colors_, indices_;
-    std::size_t cap_positions_ = 0, cap_normals_ = 0, cap_colors_ = 0, cap_indices_ = 0;
+    Buffer positions_, normals_, colors_, indices_, tiles_;
+    std::size_t cap_positions_ = 0, cap_normals_ = 0, cap_colors_ = 0, cap_indices_ = 0, cap_tiles_ = 0;
     GLsizei index_count_ = 0;
     VertexArray vao_;
     Program program_;

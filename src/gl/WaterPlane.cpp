@@ -181,6 +181,7 @@ void WaterPlane::draw(const Environment& env, double eye_y) {
         // terrain's, so a mirrored ray hits no later than through the full
         // heights, at most k - 1 samples early.
         decimation_ = water_decimation(t.cols(), t.rows(), max_size);
+        top_ = t.max_height();
         const int k = decimation_;
         const int w = (t.cols() - 2) / k + 2, h = (t.rows() - 2) / k + 2;
         std::string fs = kWaterFs;
@@ -220,7 +221,7 @@ void WaterPlane::draw(const Environment& env, double eye_y) {
     }
     glUseProgram(program_.get());
     glUniform4f(glGetUniformLocation(program_.get(), "water"), env.water_level, float(env.water_time),
-                t.max_height(), env.baked ? 1.0f : 0.0f);
+                top_, env.baked ? 1.0f : 0.0f);
     glUniform1f(glGetUniformLocation(program_.get(), "water_texel"), t.h_scale() * float(decimation_));
     glBindTextureUnit(5, heights_.get());
     glBindTextureUnit(6, colors_.get());

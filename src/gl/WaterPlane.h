@@ -51,6 +51,7 @@ private:
     VertexArray vao_;
     Texture heights_, colors_;
     int max_size_ = 0, decimation_ = 1;
+    float top_ = 0; // Terrain::max_height() (it reads every sample), with the textures
 };
 
 // The smallest k such that a terrain of cols x rows samples, decimated to

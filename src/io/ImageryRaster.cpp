@@ -55,6 +55,23 @@ int decimation_for(double w, double h, std::size_t bound) {
     return int(std::ceil(std::sqrt(bytes / double(bound))));
 }
 
+// The grid of a georeferenced raster over a georeferenced DEM: map extent
+// and texel counts at the raster's suggested resolution.
+struct GeoGrid {
+    double res, xmin, xmax, ya, yb, w, h;
+};
+GeoGrid geo_grid(GDALDatasetH picked, const ImageryTarget& target, const std::string& color_path) {
+    GeoGrid g;
+    g.res = std::abs(gdal::SuggestedWarpOutput(picked, target.wkt, color_path, "cannot place it on the DEM").geotransform[1]);
+    g.xmin = target.gt[0];
+    g.xmax = target.gt[0] + target.gt[1] * target.cols;
+    g.ya = target.gt[3];
+    g.yb = target.gt[3] + target.gt[5] * target.rows;
+    g.w = std::max(1.0, std::round((g.xmax - g.xmin) / g.res));
+    g.h = std::max(1.0, std::round(std::abs(g.yb - g.ya) / g.res));
+    return g;
+}
+
 } // namespace
 
 std::vector<std::string> color_band_options(GDALDatasetH src, std::string& bands_used, bool& rescaled) {
@@ -120,13 +137,12 @@ ImageryLoad load_imagery(const std::string& color_path, const ImageryTarget& tar
     std::string how;
     int factor = 1;
     if (dem_geo && has_gt) {
-        const double res = std::abs(gdal::SuggestedWarpOutput(picked.get(), target.wkt, color_path, "cannot place it on the DEM").geotransform[1]);
+        const GeoGrid grid = geo_grid(picked.get(), target, color_path);
         const double dem_px = std::abs(target.gt[1]);
         // Within 1 % of the DEM's pixel: nothing finer to show.
-        if (res >= 0.99 * dem_px) return out;
-        const double xmin = target.gt[0], xmax = target.gt[0] + target.gt[1] * target.cols;
-        const double ya = target.gt[3], yb = target.gt[3] + target.gt[5] * target.rows;
-        double w = std::max(1.0, std::round((xmax - xmin) / res)), h = std::max(1.0, std::round(std::abs(yb - ya) / res));
+        if (grid.res >= 0.99 * dem_px) return out;
+        const double xmin = grid.xmin, xmax = grid.xmax, ya = grid.ya, yb = grid.yb;
+        double w = grid.w, h = grid.h;
         factor = decimation_for(w, h, memory_bound);
         w = std::max(1.0, std::round(w / factor));
         h = std::max(1.0, std::round(h / factor));
@@ -156,12 +172,56 @@ ImageryLoad load_imagery(const std::string& color_path, const ImageryTarget& tar
         throw Error(color_path, "color raster does not overlap the DEM");
     if (factor > 1)
         out.warning = color_path + ": imagery of more than " + std::to_string(memory_bound >> 20) +
-                      " MiB; read decimated by " + std::to_string(factor) + " to " + std::to_string(level0.width) +
-                      "x" + std::to_string(level0.height);
+                      " MiB (--imagery-memory-mib); shown decimated by " + std::to_string(factor) + " to " +
+                      std::to_string(level0.width) + "x" + std::to_string(level0.height) +
+                      "; for its full resolution tile it (overflight tile DEM --color " + color_path +
+                      " -o DIR) and view DIR, whose quadtree streams the imagery tiles";
     out.description = color_path + " (" + bands_used + (rescaled ? ", rescaled to 8 bits" : "") + ", " + how + ", " +
                       std::to_string(level0.width) + "x" + std::to_string(level0.height) + " texels)";
     out.pyramid = std::make_shared<ImageryPyramid>(std::move(level0), x0, z0, extent_x, extent_z);
     return out;
+}
+
+ImageryGrid plan_imagery_grid(const std::string& color_path, const ImageryTarget& target) {
+    gdal::Dataset src = gdal::open_raster(color_path);
+    ImageryGrid out;
+    std::string bands_used;
+    bool rescaled = false;
+    out.band_options = color_band_options(src.get(), bands_used, rescaled);
+    double cgt[6];
+    const bool has_gt = GDALGetGeoTransform(src.get(), cgt) == CE_None;
+    const bool has_crs = GDALGetSpatialRef(src.get()) != nullptr;
+    if (!(target.georeferenced && !target.wkt.empty()))
+        throw Error(color_path, "imagery is tiled in windows only over a georeferenced DEM");
+    if (has_gt && !has_crs) throw Error(color_path, "has a geotransform but no CRS: cannot place it on the DEM");
+    if (!has_gt) throw Error(color_path, "imagery is tiled in windows only when it is georeferenced");
+    gdal::Dataset picked = gdal::translate_lazily(src.get(), out.band_options, color_path);
+    const GeoGrid g = geo_grid(picked.get(), target, color_path);
+    out.finer = g.res < 0.99 * std::abs(target.gt[1]);
+    out.xmin = g.xmin;
+    out.xmax = g.xmax;
+    out.ymin = std::min(g.ya, g.yb);
+    out.ymax = std::max(g.ya, g.yb);
+    out.width = int(g.w);
+    out.height = int(g.h);
+    char buf[120];
+    std::snprintf(buf, sizeof buf, "warped onto the DEM's extent at %.3g m per texel (bilinear), in tiles",
+                  (g.xmax - g.xmin) / g.w);
+    out.description = color_path + " (" + bands_used + (rescaled ? ", rescaled to 8 bits" : "") + ", " + buf + ", " +
+                      std::to_string(out.width) + "x" + std::to_string(out.height) + " texels)";
+    return out;
+}
+
+Image2D<Rgba8> warp_imagery_window(GDALDatasetH picked, const ImageryGrid& grid, const std::string& target_wkt, int u0,
+                                   int v0, int w, int h, const std::string& subject) {
+    const double px = (grid.xmax - grid.xmin) / grid.width, py = (grid.ymax - grid.ymin) / grid.height;
+    gdal::Dataset texels =
+        gdal::warp(picked,
+                   {"-t_srs", target_wkt, "-te", number(grid.xmin + u0 * px), number(grid.ymax - (v0 + h) * py),
+                    number(grid.xmin + (u0 + w) * px), number(grid.ymax - v0 * py), "-ts", std::to_string(w),
+                    std::to_string(h), "-r", "bilinear", "-dstalpha", "-et", "0"},
+                   subject);
+    return read_texels(texels.get(), true, subject);
 }
 
 std::shared_ptr<ImageryPyramid> imagery_over_cells(const Image2D<Rgb8>& image, double width, double depth) {

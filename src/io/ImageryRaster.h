@@ -53,11 +53,34 @@ struct ImageryLoad {
 // A raster whose pixel is not finer than the DEM's (or, stretched, not larger
 // than the grid) is left to the DEM-resolution path: pyramid null. Imagery of
 // more than `memory_bound` bytes is read decimated by the smallest whole
-// factor that fits, with a warning. Throws Error(color_path, ...) for a
-// raster with a geotransform but no CRS over a georeferenced DEM, one whose
+// factor that fits, with a warning that says to tile it for its full
+// resolution (`overflight tile` writes imagery tiles that the quadtree
+// streams). Throws Error(color_path, ...) for a raster with a geotransform but no CRS over a georeferenced DEM, one whose
 // CRS GDAL cannot transform to the DEM's, and one that does not overlap it.
 ImageryLoad load_imagery(const std::string& color_path, const ImageryTarget& target,
                          std::size_t memory_bound = kDefaultImageryMemory);
+
+// The texel grid load_imagery warps a georeferenced color raster onto over a
+// georeferenced DEM (the same numbers), for reading it in windows: the
+// target's map extent xmin .. xmax, ymin .. ymax in width x height texels.
+struct ImageryGrid {
+    bool finer = false; // false: the raster is not finer than the DEM (load_imagery gives no pyramid)
+    std::vector<std::string> band_options; // color_band_options of the raster
+    std::string description;               // as ImageryLoad::description, without the texel count
+    double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
+    int width = 0, height = 0;
+};
+// Throws as load_imagery; Error(color_path, "...") also when either side
+// is not georeferenced (only a georeferenced pair is read in windows).
+ImageryGrid plan_imagery_grid(const std::string& color_path, const ImageryTarget& target);
+
+// Texels [u0, u0 + w) x [v0, v0 + h) of the grid (any of them may lie
+// outside it) warped from `picked` (the raster translated lazily with the
+// grid's band options), bilinear, with the warp's alpha and the exact
+// transformer (no approximation: a texel does not depend on the window
+// that reads it); pure black texels get alpha 0 as in load_imagery.
+Image2D<Rgba8> warp_imagery_window(GDALDatasetH picked, const ImageryGrid& grid, const std::string& target_wkt, int u0,
+                                   int v0, int w, int h, const std::string& subject);
 
 // A color image larger than the terrain's grid (a hovercraft data set's
 // color.ppm) as imagery over the grid's squares, [0, width] x [0, depth],

@@ -17,6 +17,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
+#include <optional>
+#include <tuple>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -109,6 +112,14 @@ TileIndex plan_index(const DataSet& data, const TileWriteOptions& options) {
         ix.overview_rows = (t.rows() - 2) / f + 2;
         ix.overview_cols = (t.cols() - 2) / f + 2;
     }
+    if (const ImageryPyramid* p = t.imagery()) {
+        try {
+            ix.imagery = plan_imagery_tiles(ix.grid, p->x0(), p->z0(), p->extent_x(), p->extent_z(), p->level(0).width,
+                                            p->level(0).height);
+        } catch (const std::invalid_argument& e) {
+            throw Error("tile size", std::string("imagery: ") + e.what() + "; use a smaller --tile-size");
+        }
+    }
     return ix;
 }
 
@@ -168,13 +179,20 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
         for (int c = 0; c < g.tile_cols; ++c) {
             if (!g.present(r, c)) {
                 ++report.empty;
-                for (const TileFile f : {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2})
+                for (const TileFile f :
+                     {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2, TileFile::Imagery})
                     fs::remove(tile_path(dir, r, c, f), ec); // left over from an earlier tiling of another source
             } else {
                 const TileSamples tile = cut_tile(t, g, r, c, false);
                 if (ix.levels > 0) roughness[g.index(r, c)] = options.measures.roughness(tile.samples);
                 if (ix.levels == 0) fs::remove(tile_path(dir, r, c, TileFile::D2), ec);
-                const TileContent content(dir, ix, r, c, tile, cut_apron(t, g, r, c), options.measures);
+                std::optional<TileImagery> imagery;
+                if (ix.imagery.present())
+                    imagery = cut_tile_imagery(*t.imagery(), ix.imagery, g, r, c);
+                else
+                    fs::remove(tile_path(dir, r, c, TileFile::Imagery), ec);
+                const TileContent content(dir, ix, r, c, tile, cut_apron(t, g, r, c), options.measures,
+                                          imagery ? &*imagery : nullptr);
                 if (resume && content.on_disk()) {
                     ++report.skipped;
                 } else {
@@ -234,6 +252,35 @@ TileSamples read_tile(const std::string& dir, const TileIndex& ix, int r, int c,
     return t;
 }
 
+TileImagery read_tile_imagery(const std::string& dir, const TileIndex& ix, int r, int c) {
+    const std::string path = tile_path(dir, r, c, TileFile::Imagery);
+    if (!ix.imagery.present()) throw Error(path, "the tile directory has no imagery tiles");
+    if (!ix.grid.present(r, c)) throw Error(path, "tile is flagged 0 (no data) in index.json");
+    const ImageryTileLayout& l = ix.imagery;
+    const gdal::Dataset ds = open_checked(path, l.cols, l.rows, 4, GDT_Byte);
+    TileImagery t;
+    t.r = r;
+    t.c = c;
+    std::tie(t.u0, t.v0) = imagery_tile_origin(l, ix.grid, r, c);
+    std::vector<std::uint8_t> planes;
+    for (int m = 0; m <= l.levels; ++m) {
+        const int w = l.cols >> m, h = l.rows >> m;
+        const std::size_t n = std::size_t(w) * std::size_t(h);
+        planes.resize(4 * n);
+        read_bands(ds.get(), path, w, h, 4, GDT_Byte, planes.data(), 1 << m);
+        Image2D<Rgba8> img(w, h);
+        for (std::size_t i = 0; i < n; ++i)
+            img.pixels[i] = Rgba8{planes[i], planes[n + i], planes[2 * n + i], planes[3 * n + i]};
+        t.levels.push_back(std::move(img));
+    }
+    return t;
+}
+
+TileImageryLoader tile_directory_imagery_loader(const std::string& dir, const TileIndex& index) {
+    if (!index.imagery.present()) return {};
+    return [dir, index](int r, int c) { return read_tile_imagery(dir, index, r, c); };
+}
+
 TileLoader tile_directory_loader(const std::string& dir, const TileIndex& index) {
     return [dir, index](int r, int c, int level) { return read_tile(dir, index, r, c, true, level); };
 }
@@ -262,6 +309,13 @@ void fill_info(TerrainInfo& info, const std::string& dir, const TileIndex& ix) {
     info.metadata.emplace_back("tiles", std::to_string(ix.grid.tile_rows) + "x" + std::to_string(ix.grid.tile_cols));
     info.metadata.emplace_back("checksum", ix.checksum);
     info.metadata.emplace_back("tiled_from", ix.source);
+    if (ix.imagery.present()) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%dx%d texels of %.3g m, %dx%d per tile with %d levels (tile _img.tif files)",
+                      ix.imagery.width, ix.imagery.height, std::max(ix.imagery.texel_x(), ix.imagery.texel_z()),
+                      ix.imagery.cols, ix.imagery.rows, ix.imagery.levels);
+        info.metadata.emplace_back("imagery_tiles", buf);
+    }
 }
 
 } // namespace

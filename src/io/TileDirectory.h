@@ -46,6 +46,16 @@
 //                        at its even samples, with overviews of every
 //                        2^m-th: a tile read at level m takes level m - 1 of
 //                        it, so its quadtree has the full tile's d2.
+//   r{R}_c{C}_img.tif    with imagery finer than the DEM (index.json
+//                        "imagery": its whole texel grid, texel size, level
+//                        count, texels per tile; null or absent without):
+//                        4 bands Byte (RGBA, alpha = the source's coverage),
+//                        the tile's window of the imagery's texel grid
+//                        (core/TiledImagery.h: the tile's cells plus a
+//                        margin, blended over the elevation colors where
+//                        the imagery has no coverage), georeferenced, with
+//                        GeoTIFF overviews m = 1 .. levels holding the
+//                        box-filtered mip levels (not decimated).
 //   r{R}_c{C}_apron.tif  the raw samples just outside the tile (core/TileGrid.h
 //                        TileApron): 4 rows of tile_size UInt16 (north, south,
 //                        west, east), so that the loader computes normals at
@@ -136,6 +146,13 @@ TileIndex read_tile_index(const std::string& dir);
 // are out of range (heights at level 0 must span exactly the index's range).
 TileSamples read_tile(const std::string& dir, const TileIndex& index, int r, int c, bool with_normals = true,
                       int level = 0);
+
+// Tile (r, c)'s imagery with its levels. Throws Error(tile path, ...) when
+// the directory has none, the file is missing, unreadable or not the size
+// the index gives.
+TileImagery read_tile_imagery(const std::string& dir, const TileIndex& index, int r, int c);
+// A loader of read_tile_imagery for TileSet; empty without imagery tiles.
+TileImageryLoader tile_directory_imagery_loader(const std::string& dir, const TileIndex& index);
 
 // A loader for TileSet that reads tiles from `dir`.
 TileLoader tile_directory_loader(const std::string& dir, const TileIndex& index);

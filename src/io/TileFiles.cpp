@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 namespace overflight {
 
 std::string tile_path(const std::string& dir, int r, int c, TileFile f) {
-    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif", "_d2.tif"};
+    static const char* suffix[] = {".tif", "_rgb.tif", "_apron.tif", "_d2.tif", "_img.tif"};
     return (fs::path(dir) / ("r" + std::to_string(r) + "_c" + std::to_string(c) + suffix[int(f)])).string();
 }
 
@@ -45,10 +45,42 @@ std::vector<std::uint8_t> color_planes(const Terrain& t) {
     return planes;
 }
 
+std::vector<std::uint8_t> rgba_planes(const Image2D<Rgba8>& img) {
+    const std::size_t n = img.pixels.size();
+    std::vector<std::uint8_t> planes(4 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        planes[i] = img.pixels[i].r;
+        planes[n + i] = img.pixels[i].g;
+        planes[2 * n + i] = img.pixels[i].b;
+        planes[3 * n + i] = img.pixels[i].a;
+    }
+    return planes;
+}
+
+std::array<double, 6> imagery_tile_geotransform(const TileIndex& ix, int u0, int v0) {
+    const ImageryTileLayout& l = ix.imagery;
+    const std::array<double, 6>& g = ix.geotransform;
+    const double hs = ix.grid.h_scale;
+    // World x maps to the map's X as the samples do: sample j's centre (x =
+    // hs j) is g[0] + (j + 1/2) g[1] (north-up grids: g[2] = g[4] = 0).
+    const double x = l.x_of(u0), z = l.z_of(v0);
+    return {g[0] + (x / hs + 0.5) * g[1], g[1] * l.texel_x() / hs, 0.0, g[3] + (z / hs + 0.5) * g[5], 0.0,
+            g[5] * l.texel_z() / hs};
+}
+
 TileContent::TileContent(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t,
-                         const TileApron& apron, const TileMeasures& measures)
+                         const TileApron& apron, const TileMeasures& measures, const TileImagery* imagery)
     : gt_(tile_geotransform(ix, r, c)), rgb_(color_planes(t.samples)) {
     const int n = ix.grid.tile_size;
+    if (imagery && ix.imagery.present()) {
+        imagery_gt_ = imagery_tile_geotransform(ix, imagery->u0, imagery->v0);
+        for (const Image2D<Rgba8>& level : imagery->levels) imagery_planes_.push_back(rgba_planes(level));
+        for (std::size_t m = 1; m < imagery_planes_.size(); ++m) imagery_levels_.push_back(imagery_planes_[m].data());
+        files_.emplace_back(tile_path(dir, r, c, TileFile::Imagery),
+                            RasterSpec{ix.imagery.cols, ix.imagery.rows, 4, GDT_Byte, imagery_planes_[0].data(),
+                                       ix.georeferenced ? &imagery_gt_ : nullptr, ix.crs_wkt, nullptr, true,
+                                       ix.imagery.levels, &imagery_levels_});
+    }
     for (const auto* side : {&apron.north, &apron.south, &apron.west, &apron.east})
         sides_.insert(sides_.end(), side->begin(), side->end());
     files_.emplace_back(tile_path(dir, r, c, TileFile::Colors),
@@ -132,6 +164,10 @@ bool resumable(const std::string& dir, const TileIndex& ix) {
         return old.checksum == ix.checksum && old.grid.tile_size == ix.grid.tile_size &&
                old.geotransform == ix.geotransform && old.crs_wkt == ix.crs_wkt && old.apron &&
                old.overview_stride == ix.overview_stride && old.levels == ix.levels &&
+               old.imagery.present() == ix.imagery.present() && old.imagery.x0 == ix.imagery.x0 &&
+               old.imagery.z0 == ix.imagery.z0 && old.imagery.extent_x == ix.imagery.extent_x &&
+               old.imagery.extent_z == ix.imagery.extent_z && old.imagery.width == ix.imagery.width &&
+               old.imagery.height == ix.imagery.height &&
                old.grid.d2_min_resolution == ix.grid.d2_min_resolution;
     } catch (const Error&) {
         return false;

@@ -16,9 +16,9 @@
 
 namespace overflight {
 
-enum class TileFile { Heights, Colors, Apron, D2 };
+enum class TileFile { Heights, Colors, Apron, D2, Imagery };
 
-// DIR/r{R}_c{C}.tif and its _rgb, _apron and _d2 siblings.
+// DIR/r{R}_c{C}.tif and its _rgb, _apron, _d2 and _img siblings.
 std::string tile_path(const std::string& dir, int r, int c, TileFile f);
 std::string index_path(const std::string& dir);
 
@@ -29,6 +29,14 @@ std::array<double, 6> tile_geotransform(const TileIndex& ix, int r, int c);
 // leaves an index its readers refuse.
 void write_index(const std::string& dir, const TileIndex& ix);
 
+// RGBA texels as four planes, the layout RasterSpec takes.
+std::vector<std::uint8_t> rgba_planes(const Image2D<Rgba8>& img);
+
+// The georeferencing of an imagery tile whose first texel is global texel
+// (u0, v0): the terrain's (north up), at the imagery's texel size; none
+// (identity) for a terrain without georeferencing.
+std::array<double, 6> imagery_tile_geotransform(const TileIndex& ix, int u0, int v0);
+
 // Colors as three planes (red, green, blue), the layout RasterSpec takes.
 std::vector<std::uint8_t> color_planes(const Terrain& t);
 
@@ -37,8 +45,9 @@ std::vector<std::uint8_t> color_planes(const Terrain& t);
 // finished tile. Not movable: the specs point into the buffers.
 class TileContent {
 public:
+    // With `imagery` (index with imagery tiles), its file too.
     TileContent(const std::string& dir, const TileIndex& ix, int r, int c, const TileSamples& t, const TileApron& apron,
-                const TileMeasures& measures);
+                const TileMeasures& measures, const TileImagery* imagery = nullptr);
     TileContent(const TileContent&) = delete;
     TileContent& operator=(const TileContent&) = delete;
 
@@ -51,6 +60,9 @@ private:
     std::vector<std::uint8_t> rgb_;
     std::vector<std::uint16_t> sides_;
     std::vector<float> even_d2_;
+    std::array<double, 6> imagery_gt_{};
+    std::vector<std::vector<std::uint8_t>> imagery_planes_; // per level, RGBA planes
+    std::vector<const void*> imagery_levels_;               // levels 1.. of them
     std::vector<std::pair<std::string, RasterSpec>> files_;
 };
 

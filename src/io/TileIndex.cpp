@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <algorithm>
+#include <stdexcept>
 
 namespace overflight {
 
@@ -93,6 +95,20 @@ void read_header(const json& j, TileIndex& ix, const std::string& subject) {
     ix.levels = j.contains("levels") ? int_of(j.at("levels"), "levels", subject) : 0;
     g.d2_min_resolution = j.contains("d2_min_resolution") ? double_of(j.at("d2_min_resolution"), "d2_min_resolution", subject)
                                                           : 0.0;
+    if (j.contains("imagery") && !j.at("imagery").is_null()) {
+        const json& m = j.at("imagery");
+        ImageryTileLayout& l = ix.imagery;
+        l.x0 = double_of(m.at("x0"), "imagery x0", subject);
+        l.z0 = double_of(m.at("z0"), "imagery z0", subject);
+        l.extent_x = double_of(m.at("extent_x"), "imagery extent_x", subject);
+        l.extent_z = double_of(m.at("extent_z"), "imagery extent_z", subject);
+        l.width = int_of(m.at("width"), "imagery width", subject);
+        l.height = int_of(m.at("height"), "imagery height", subject);
+        l.levels = int_of(m.at("levels"), "imagery levels", subject);
+        l.cols = int_of(m.at("tile_cols"), "imagery tile_cols", subject);
+        l.rows = int_of(m.at("tile_rows"), "imagery tile_rows", subject);
+        if (l.width < 1 || l.height < 1) throw Error(subject, "imagery width and height must be at least 1");
+    }
     if (j.contains("overview") && !j.at("overview").is_null()) {
         const json& o = j.at("overview");
         ix.overview_stride = int_of(o.at("stride"), "overview stride", subject);
@@ -155,6 +171,19 @@ std::string tile_index_text(const TileIndex& ix) {
                  {"levels", ix.levels},
                  {"roughness", roughness},
                  {"d2_min_resolution", g.d2_min_resolution},
+                 {"imagery", ix.imagery.present() ? json{{"format", kImageryTileFormat},
+                                                         {"files", "r{R}_c{C}_img.tif"},
+                                                         {"x0", ix.imagery.x0},
+                                                         {"z0", ix.imagery.z0},
+                                                         {"extent_x", ix.imagery.extent_x},
+                                                         {"extent_z", ix.imagery.extent_z},
+                                                         {"width", ix.imagery.width},
+                                                         {"height", ix.imagery.height},
+                                                         {"texel_size", std::max(ix.imagery.texel_x(), ix.imagery.texel_z())},
+                                                         {"levels", ix.imagery.levels},
+                                                         {"tile_cols", ix.imagery.cols},
+                                                         {"tile_rows", ix.imagery.rows}}
+                                                   : json(nullptr)},
                  {"overview", ix.overview_stride > 1 ? json{{"stride", ix.overview_stride},
                                                              {"rows", ix.overview_rows},
                                                              {"cols", ix.overview_cols},
@@ -174,6 +203,18 @@ void validate_tile_index(const TileIndex& ix, const std::string& subject) {
         throw Error(subject, "roughness is given for other levels than the tiles hold");
     if (ix.padded_size != ix.grid.padded_rows() || ix.padded_size != ix.grid.padded_cols())
         throw Error(subject, "padded_size does not match the tile grid");
+    if (ix.imagery.present()) {
+        // The tile sizes follow from the grids: recomputed, not trusted.
+        ImageryTileLayout want;
+        try {
+            want = plan_imagery_tiles(ix.grid, ix.imagery.x0, ix.imagery.z0, ix.imagery.extent_x, ix.imagery.extent_z,
+                                      ix.imagery.width, ix.imagery.height);
+        } catch (const std::invalid_argument& e) {
+            throw Error(subject, std::string("imagery: ") + e.what());
+        }
+        if (want.levels != ix.imagery.levels || want.cols != ix.imagery.cols || want.rows != ix.imagery.rows)
+            throw Error(subject, "imagery levels and tile sizes do not match its grid and the tiles'");
+    }
     if (ix.overview_stride != 0) {
         const int k = ix.overview_stride;
         if (k < 2 || k > 65536 || (k & (k - 1)) != 0 || ix.overview_rows != (ix.grid.source_rows - 2) / k + 2 ||

@@ -5,6 +5,7 @@
 // checked against the format's limits (core/TileGrid.h) before anything is
 // allocated from it.
 #include "core/TileGrid.h"
+#include "core/TiledImagery.h"
 
 #include <array>
 #include <string>
@@ -24,7 +25,13 @@ struct TileIndex {
     int overview_stride = 0;  // 0: no overview files
     int overview_rows = 0, overview_cols = 0;
     std::string source; // what was tiled (path or "demo")
+    // Imagery tiles (r{R}_c{C}_img.tif) at the imagery's own resolution;
+    // imagery.present() false in directories without them (older ones too).
+    ImageryTileLayout imagery;
 };
+
+// File name of tile (r, c)'s imagery, in the index as a pattern.
+inline constexpr const char* kImageryTileFormat = "GTiff RGBA8 DEFLATE, levels as box-filtered overviews";
 
 // File names of the overview (see io/TileDirectory.h).
 inline constexpr const char* kOverviewHeights = "overview.tif";

@@ -22,9 +22,17 @@ std::size_t plane_bytes(const RasterSpec& spec) {
     return std::size_t(spec.cols) * std::size_t(spec.rows) * std::size_t(GDALGetDataTypeSizeBytes(spec.type));
 }
 
-// Every f-th sample of band b of `spec` in both directions (f = 1: the band).
+// Every f-th sample of band b of `spec` in both directions (f = 1: the band),
+// or band b of the box-filtered level of factor f when the spec has them.
 std::vector<unsigned char> level_plane(const RasterSpec& spec, int b, int f) {
     const std::size_t bytes = std::size_t(GDALGetDataTypeSizeBytes(spec.type));
+    if (spec.box_levels && f > 1) {
+        int m = 0;
+        while ((1 << m) < f) ++m;
+        const std::size_t plane = std::size_t(spec.cols / f) * std::size_t(spec.rows / f) * bytes;
+        const auto* p = static_cast<const unsigned char*>((*spec.box_levels)[std::size_t(m - 1)]) + std::size_t(b) * plane;
+        return std::vector<unsigned char>(p, p + plane);
+    }
     const auto* src = static_cast<const unsigned char*>(spec.data) + std::size_t(b) * plane_bytes(spec);
     const int cols = (spec.cols - 1) / f + 1, rows = (spec.rows - 1) / f + 1;
     std::vector<unsigned char> out(std::size_t(cols) * std::size_t(rows) * bytes);
@@ -76,7 +84,8 @@ void fill_dataset(GDALDatasetH ds, const std::string& path, const RasterSpec& sp
     }
     for (int b = 0; b < spec.bands; ++b) {
         GDALRasterBandH h = GDALGetRasterBand(ds, b + 1);
-        if (spec.rgb) GDALSetRasterColorInterpretation(h, b == 0 ? GCI_RedBand : b == 1 ? GCI_GreenBand : GCI_BlueBand);
+        if (spec.rgb)
+            GDALSetRasterColorInterpretation(h, b == 0 ? GCI_RedBand : b == 1 ? GCI_GreenBand : b == 2 ? GCI_BlueBand : GCI_AlphaBand);
         if (spec.height_mapping) {
             GDALSetRasterScale(h, spec.height_mapping->v_scale);
             GDALSetRasterOffset(h, spec.height_mapping->y_offset);

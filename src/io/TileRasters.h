@@ -10,6 +10,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 namespace overflight {
 
@@ -26,6 +27,11 @@ struct RasterSpec {
     const TileGrid* height_mapping = nullptr;
     bool rgb = false;
     int levels = 0; // GeoTIFF overviews holding every 2^m-th sample, m = 1 .. levels
+    // Instead of every 2^m-th sample, overview m holds box_levels[m - 1]
+    // (bands planes of cols / 2^m x rows / 2^m; cols and rows multiples of
+    // 2^levels): an imagery tile's mip levels. With rgb and 4 bands, band 4
+    // is alpha.
+    const std::vector<const void*>* box_levels = nullptr;
 };
 
 // Writes `spec` to `path` (DEFLATE GeoTIFF). Throws Error(path, ...), e.g.

@@ -8,7 +8,9 @@
 #include "io/Gdal.h"
 #include "io/GdalSource.h"
 #include "io/HeightMapping.h"
+#include "io/ImageryRaster.h"
 #include "io/MetricWarp.h"
+#include "core/ImageryFallback.h"
 #include "io/TileFiles.h"
 
 #include <cpl_conv.h>
@@ -27,6 +29,8 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <stdexcept>
 #include <tuple>
 #include <unistd.h>
 
@@ -68,19 +72,26 @@ struct Plan {
     std::array<double, 6> gt{0, 1, 0, 0, 0, 1};
     std::string wkt;
     float h_scale = 1;
+    double h_scale_exact = 1; // before rounding to float, as load_gdal_raster gives the imagery
     float lo = 0, hi = 0; // valid elevations, metres
     bool integral = true; // whole metres, kept exact (filled voids rounded)
     HeightMapping mapping;
     float world_lo = 0, world_hi = 0; // Terrain::min_height / max_height of the whole
     std::string checksum;
+    // Imagery tiled beside the heights (empty color_path: none).
+    std::string color_path;
+    ImageryGrid imagery;
+    ImageryTileLayout layout;
 };
 
 // A thread's view of the source: the raster, and its warp onto the grid
-// (PROJ's transformations are not shared between threads).
+// (PROJ's transformations are not shared between threads); the color
+// raster and its chosen bands.
 struct Reader {
     gdal::Dataset source;
     GDALRasterBandH band = nullptr;
     std::unique_ptr<MetricWarp> warp;
+    gdal::Dataset color, picked;
 };
 
 void open_reader(Reader& r, const Plan& plan, bool warped) {
@@ -197,6 +208,7 @@ void plan_grid(Plan& plan, GDALDatasetH src) {
     if (const std::string problem = horizontal_scale_problem(plan.rows, plan.cols, hs); !problem.empty())
         throw Error(plan.path, "pixel size: " + problem);
     plan.h_scale = float(hs);
+    plan.h_scale_exact = hs;
 }
 
 // Pass 1: elevation range, no-data count, wholeness and checksum, over the
@@ -277,12 +289,8 @@ struct CutWindow {
     int row0, col0;
 };
 
-CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int r, int c) {
-    const int S = g.stride();
-    // The apron is one sample beyond the tile; the colors of the tile's
-    // samples read one sample around each.
-    const int r0 = std::max(0, r * S - 1), r1 = std::min(plan.rows - 1, r * S + S + 1);
-    const int c0 = std::max(0, c * S - 1), c1 = std::min(plan.cols - 1, c * S + S + 1);
+// Rows r0 .. r1 and columns c0 .. c1 of the terrain.
+CutWindow cut_window(const Reader& rd, const Plan& plan, int r0, int r1, int c0, int c1) {
     const int h = r1 - r0 + 1, w = c1 - c0 + 1;
     std::vector<float> z;
     read_metres(rd, plan, r0, c0, h, w, z);
@@ -327,11 +335,79 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, const TileGrid& g, int 
     return cw;
 }
 
+// The samples tile (r, c) reads: its own, the apron and one sample around
+// them (the hill shading's 3x3); with imagery, those under its texels (the
+// fallback colors, bilinear) and one around them.
+std::array<int, 4> window_of(const Plan& plan, const TileGrid& g, int r, int c) {
+    const int S = g.stride();
+    int r0 = r * S - 1, r1 = r * S + S + 1, c0 = c * S - 1, c1 = c * S + S + 1;
+    if (plan.layout.present()) {
+        const ImageryTileLayout& l = plan.layout;
+        const auto [u0, v0] = imagery_tile_origin(l, g, r, c);
+        const double hs = plan.h_scale;
+        c0 = std::min(c0, int(std::floor(l.x_of(u0) / hs)) - 1);
+        c1 = std::max(c1, int(std::ceil(l.x_of(u0 + l.cols) / hs)) + 1);
+        r0 = std::min(r0, int(std::floor(l.z_of(v0) / hs)) - 1);
+        r1 = std::max(r1, int(std::ceil(l.z_of(v0 + l.rows) / hs)) + 1);
+    }
+    return {std::max(0, r0), std::min(plan.rows - 1, r1), std::max(0, c0), std::min(plan.cols - 1, c1)};
+}
+
 // Peak bytes of one tile in flight: the widened float window and GDAL's copy
-// of it for the fill, the tile's samples, colors, d2, encoded files.
+// of it for the fill, the tile's samples, colors, d2, encoded files; with
+// imagery its warped window, blend, levels and encoded planes.
 std::int64_t bytes_per_tile(const Plan& plan, int tile_size) {
-    const std::int64_t side = std::min<std::int64_t>(tile_size + 2 + 2 * kFillSearchDistance, std::max(plan.rows, plan.cols));
-    return 12 * side * side + 48 * std::int64_t(tile_size) * tile_size + (16 << 20);
+    std::int64_t side = tile_size + 2;
+    if (plan.layout.present())
+        side = std::max<std::int64_t>(side, std::int64_t(std::ceil(std::max(plan.layout.cols * plan.layout.texel_x(),
+                                                                             plan.layout.rows * plan.layout.texel_z()) /
+                                                                    plan.h_scale)) + 4);
+    side = std::min<std::int64_t>(side + 2 * kFillSearchDistance, std::max(plan.rows, plan.cols));
+    std::int64_t bytes = 12 * side * side + 48 * std::int64_t(tile_size) * tile_size + (16 << 20);
+    if (plan.layout.present())
+        bytes += 40 * std::int64_t(plan.layout.cols + 6) * (plan.layout.rows + 6);
+    return bytes;
+}
+
+void open_imagery(Reader& r, const Plan& plan) {
+    if (r.picked) return;
+    r.color = gdal::open_raster(plan.color_path);
+    r.picked = gdal::translate_lazily(r.color.get(), plan.imagery.band_options, plan.color_path);
+}
+
+// Tile (r, c)'s imagery from its window of the color raster, blended over
+// the window's elevation colors as load_terrain blends the whole.
+TileImagery cut_imagery(Reader& rd, const Plan& plan, const TileGrid& g, const CutWindow& cw, int r, int c) {
+    open_imagery(rd, plan);
+    const ImageryTileLayout& l = plan.layout;
+    TileImagery t;
+    t.r = r;
+    t.c = c;
+    std::tie(t.u0, t.v0) = imagery_tile_origin(l, g, r, c);
+    const int f = kImageryFeatherTexels;
+    const Image2D<Rgba8> window = warp_imagery_window(rd.picked.get(), plan.imagery, plan.wkt, t.u0 - f, t.v0 - f,
+                                                      l.cols + 2 * f, l.rows + 2 * f, plan.color_path);
+    const FallbackWindow fallback{&cw.samples, cw.row0, cw.col0, plan.rows, plan.cols};
+    t.levels = imagery_tile_levels(blend_imagery_window(window, l, t.u0, t.v0, f, fallback), l.levels);
+    return t;
+}
+
+// Plans the imagery of `plan` over tiles of `grid` (the plan's grid known):
+// Error(color path, ...) as load_imagery when it cannot be placed; nothing
+// when it is not finer than the DEM.
+void plan_imagery(Plan& plan, const TileGrid& grid, const std::string& color_path) {
+    const ImageryTarget target{plan.rows, plan.cols, plan.h_scale_exact, plan.georeferenced, plan.gt, plan.wkt};
+    plan.imagery = plan_imagery_grid(color_path, target);
+    if (!plan.imagery.finer) return;
+    plan.color_path = color_path;
+    // The in-memory pyramid's rectangle: the DEM's pixels (ImageryRaster.cpp load_imagery).
+    const double hs = plan.h_scale_exact;
+    try {
+        plan.layout = plan_imagery_tiles(grid, -0.5 * hs, -0.5 * hs, hs * plan.cols, hs * plan.rows, plan.imagery.width,
+                                         plan.imagery.height);
+    } catch (const std::invalid_argument& e) {
+        throw Error(color_path, e.what());
+    }
 }
 
 // The tile grid of the planned terrain; Error(path, ...) when it is too large.
@@ -356,6 +432,20 @@ int workers_within(const Plan& plan, int tile_size, std::int64_t budget) {
 }
 
 } // namespace
+
+bool windowed_imagery_applies(const std::string& path, const std::string& color_path) {
+    gdal::ensure_initialised();
+    Plan plan;
+    plan.path = path;
+    gdal::Dataset src = gdal::open_raster(path);
+    plan_grid(plan, src.get());
+    if (!plan.georeferenced || plan.wkt.empty()) return false;
+    gdal::Dataset color = gdal::open_raster(color_path);
+    double cgt[6];
+    if (GDALGetGeoTransform(color.get(), cgt) != CE_None || GDALGetSpatialRef(color.get()) == nullptr) return false;
+    const ImageryTarget target{plan.rows, plan.cols, plan.h_scale_exact, plan.georeferenced, plan.gt, plan.wkt};
+    return plan_imagery_grid(color_path, target).finer;
+}
 
 TileWriteReport tile_raster_in_windows(const std::string& path, const std::string& dir,
                                        const WindowedTileOptions& options) {
@@ -395,6 +485,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         plan_grid(plan, src.get());
         // Sizes and memory are checked before the source is read.
         const TileGrid sized = grid_of(plan, o.tile_size);
+        if (!options.color_path.empty()) plan_imagery(plan, sized, options.color_path);
         workers_within(plan, sized.tile_size, budget);
         const int tiles = sized.tile_rows * sized.tile_cols;
         survey(plan, src.get(), budget, [&](double f) {
@@ -418,6 +509,18 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
     else
         ix.geotransform = {-0.5 * g.h_scale, g.h_scale, 0, 0.5 * g.h_scale, 0, -g.h_scale}; // as plan_index
     ix.apron = true;
+    ix.imagery = plan.layout;
+    if (plan.layout.present()) {
+        // Parts tiling other imagery (or none) must not merge with these.
+        const double l[] = {plan.layout.x0, plan.layout.z0, plan.layout.extent_x, plan.layout.extent_z,
+                            double(plan.layout.width), double(plan.layout.height)};
+        std::uint64_t h = fnv(kFnvBasis, ix.checksum.data(), ix.checksum.size());
+        h = fnv(h, l, sizeof l);
+        h = fnv(h, plan.color_path.data(), plan.color_path.size());
+        char buf[17];
+        std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+        ix.checksum = plan.checksum = buf;
+    }
     ix.levels = o.measures.available() ? g.coarsest_level() : 0;
     ix.grid.d2_min_resolution = ix.levels > 0 ? o.measures.min_resolution : 0.0;
     const int f = overview_stride(plan.rows, plan.cols, o.overview_max_side);
@@ -473,19 +576,36 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         std::error_code ec;
         if (!g.present(r, c)) {
             ++empty;
-            for (const TileFile file : {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2})
+            for (const TileFile file :
+                 {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2, TileFile::Imagery})
                 fs::remove(tile_path(dir, r, c, file), ec);
             return;
         }
         Reader& rd = readers.local();
         open_reader(rd, plan, true);
-        const CutWindow cw = cut_window(rd, plan, g, r, c);
+        const std::array<int, 4> bounds = window_of(plan, g, r, c);
+        CutWindow cw = cut_window(rd, plan, bounds[0], bounds[1], bounds[2], bounds[3]);
+        std::optional<TileImagery> imagery;
+        if (plan.layout.present()) {
+            imagery = cut_imagery(rd, plan, g, cw, r, c);
+            // The samples' colors are the imagery's (colors_from_imagery).
+            const int level = tile_sample_color_level(plan.layout, plan.h_scale);
+            const double hs = plan.h_scale;
+            for (int i = std::max(r * S, cw.row0); i <= std::min(r * S + S, cw.row0 + cw.samples.rows() - 1); ++i)
+                for (int j = std::max(c * S, cw.col0); j <= std::min(c * S + S, cw.col0 + cw.samples.cols() - 1); ++j) {
+                    const Rgba8 t = tile_imagery_bilinear(*imagery, plan.layout, hs * j, hs * i, level);
+                    cw.samples.color(i - cw.row0, j - cw.col0) = Rgb8{t.r, t.g, t.b};
+                }
+        } else {
+            fs::remove(tile_path(dir, r, c, TileFile::Imagery), ec);
+        }
         const TerrainWindow window{cw.samples, cw.row0, cw.col0};
         const TileSamples tile = cut_tile(window, g, r, c);
         const std::size_t k = std::size_t(r - first_row) * std::size_t(g.tile_cols) + std::size_t(c);
         if (ix.levels > 0) rec.roughness[k] = o.measures.roughness(tile.samples);
         if (ix.levels == 0) fs::remove(tile_path(dir, r, c, TileFile::D2), ec);
-        const TileContent content(dir, ix, r, c, tile, cut_apron(window, g, r, c), o.measures);
+        const TileContent content(dir, ix, r, c, tile, cut_apron(window, g, r, c), o.measures,
+                                  imagery ? &*imagery : nullptr);
         if (resume && content.on_disk()) {
             ++skipped;
         } else {

@@ -53,7 +53,19 @@ struct WindowedTileOptions {
     // Called, before the source is read, with each warning the loader would
     // give (TerrainInfo::warnings, e.g. only band 1 of several is read).
     std::function<void(const std::string& warning)> warn;
+    // A georeferenced color raster finer than the DEM (io/ImageryRaster.h):
+    // tiled beside the heights at its own resolution (r{R}_c{C}_img.tif,
+    // core/TiledImagery.h), each tile warped from its window of the raster,
+    // and the samples' colors are the imagery's as load_terrain gives them.
+    // Check it with windowed_imagery_applies first.
+    std::string color_path;
 };
+
+// Whether `color_path` is imagery this tiler reads in windows over the
+// raster at `path`: both georeferenced and the color raster finer than the
+// DEM. Otherwise `overflight tile` loads them whole (the DEM-resolution
+// colors). Throws as load_imagery for a color raster it cannot place.
+bool windowed_imagery_applies(const std::string& path, const std::string& color_path);
 
 // Tiles the raster at `path` into `dir`, part options.part of the run; the
 // last part to finish (or the only one) writes the overview and the complete

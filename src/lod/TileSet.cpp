@@ -62,6 +62,66 @@ TileSet::TileSet(TileGrid grid, TileLoader loader, std::size_t memory_bound, dou
 
 TileSet::~TileSet() = default;
 
+void TileSet::set_imagery(const ImageryTileLayout& layout, TileImageryLoader loader, std::size_t memory_bound) {
+    imagery_loader_ = std::move(loader);
+    imagery_bound_ = memory_bound;
+    imagery_lru_.clear();
+    imagery_cache_.clear();
+    imagery_bytes_ = 0;
+    imagery_frame_ = TileImageryFrame{};
+    imagery_frame_.layout = layout;
+    imagery_frame_.tile_rows = grid_.tile_rows;
+    imagery_frame_.tile_cols = grid_.tile_cols;
+    imagery_frame_.tile_world_size = grid_.tile_world_size();
+}
+
+void TileSet::stream_imagery(const Camera& camera, TileFrameStats& stats) {
+    const auto t0 = Clock::now();
+    const ImageryTileLayout& l = imagery_frame_.layout;
+    // Beyond this distance a pixel spans more than the texels of the level
+    // after the tile's coarsest, where the shader shows the samples' colors.
+    const double reach = camera.focal_px() * std::max(l.texel_x(), l.texel_z()) * double(2 << l.levels);
+    const double size = grid_.tile_world_size();
+    const glm::dvec3 eye = camera.eye;
+    std::vector<std::pair<double, std::size_t>> wanted;
+    for (const auto& [r, c] : visible_keys_) {
+        const std::size_t i = grid_.index(r, c);
+        const double x0 = c * size, z0 = r * size;
+        const double dx = std::max({x0 - eye.x, 0.0, eye.x - (x0 + size)});
+        const double dz = std::max({z0 - eye.z, 0.0, eye.z - (z0 + size)});
+        const double dy = std::max({double(grid_.min_height[i]) - eye.y, 0.0, eye.y - double(grid_.max_height[i])});
+        const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+        if (d < reach) wanted.emplace_back(d, i);
+    }
+    std::sort(wanted.begin(), wanted.end());
+    imagery_frame_.tiles.clear();
+    const std::size_t per_tile = l.tile_bytes();
+    for (const auto& [d, i] : wanted) {
+        // The nearest first, as many as the bound holds.
+        if (imagery_frame_.tiles.size() * per_tile + per_tile > std::max(imagery_bound_, per_tile)) break;
+        auto it = imagery_cache_.find(i);
+        if (it != imagery_cache_.end()) {
+            imagery_lru_.splice(imagery_lru_.begin(), imagery_lru_, it->second);
+        } else {
+            const int r = int(i / std::size_t(grid_.tile_cols)), c = int(i % std::size_t(grid_.tile_cols));
+            auto tile = std::make_shared<const TileImagery>(imagery_loader_(r, c));
+            imagery_bytes_ += tile->bytes();
+            imagery_lru_.emplace_front(i, std::move(tile));
+            imagery_cache_[i] = imagery_lru_.begin();
+            ++stats.imagery_loaded;
+        }
+        imagery_frame_.tiles.push_back(imagery_lru_.front().second);
+    }
+    // Drop the least recently used beyond the bound (never this frame's).
+    while (imagery_bytes_ > imagery_bound_ && imagery_lru_.size() > imagery_frame_.tiles.size()) {
+        imagery_bytes_ -= imagery_lru_.back().second->bytes();
+        imagery_cache_.erase(imagery_lru_.back().first);
+        imagery_lru_.pop_back();
+    }
+    stats.imagery_tiles = int(imagery_frame_.tiles.size());
+    stats.ms_imagery = ms_since(t0);
+}
+
 bool TileSet::is_cached(int r, int c) const {
     for (int l = 0; l <= grid_.coarsest_level(); ++l)
         if (cache_.count(key(r, c, l))) return true;
@@ -290,6 +350,9 @@ void TileSet::draw(const Camera& camera, double c_rottger, const Frustum& frustu
             q.set_neighbour(RottgerQuadtree::West, at(p.row, p.col - 1));
             q.set_neighbour(RottgerQuadtree::East, at(p.row, p.col + 1));
             stats.triangles += q.append_fans(out);
+            // With imagery tiles, each vertex names its tile (MeshArrays::tiles).
+            if (imagery_loader_)
+                out.tiles.resize(out.positions.size(), (std::uint32_t(p.row) << 16) | std::uint32_t(p.col));
         }
         stats.ms_fans += ms_since(t1);
     }
@@ -309,6 +372,7 @@ TileFrameStats TileSet::build_mesh(const Camera& camera, double error_px, MeshAr
     stats.ms_select = ms_since(t0);
     draw(camera, c_rottger, frustum, stats, out);
     evict(stats);
+    if (imagery_loader_) stream_imagery(camera, stats);
 
     stats.cached = int(cache_.size());
     stats.cache_bytes = bytes_;

@@ -31,6 +31,7 @@
 #include "core/MeshArrays.h"
 #include "core/Terrain.h"
 #include "core/TileGrid.h"
+#include "core/TiledImagery.h"
 #include "lod/Frustum.h"
 #include "lod/RottgerQuadtree.h"
 
@@ -69,6 +70,9 @@ struct TileFrameStats {
     std::size_t cache_bytes = 0;
     std::size_t triangles = 0;
     double ms_select = 0, ms_load = 0, ms_refine = 0, ms_fans = 0;
+    int imagery_tiles = 0;  // visible tiles shown with their imagery tiles
+    int imagery_loaded = 0; // imagery tiles loaded this frame
+    double ms_imagery = 0;
 };
 
 class TileSet {
@@ -90,6 +94,17 @@ public:
     // stay coarse) and append the stitched fans to `out` (cleared first).
     // Throws what the loader throws.
     TileFrameStats build_mesh(const Camera& camera, double error_px, MeshArrays& out);
+
+    // Streams imagery tiles (core/TiledImagery.h) with the heights: after
+    // each frame's mesh, every visible tile near enough that its imagery
+    // is finer on screen than its samples' colors (the nearest point of
+    // its box closer than focal_px x the texel of the level after the
+    // tile's coarsest) is loaded, most recently used kept within
+    // `memory_bound` bytes (beyond it the farthest visible tiles go without
+    // and show their samples' colors). An empty loader turns it off.
+    void set_imagery(const ImageryTileLayout& layout, TileImageryLoader loader, std::size_t memory_bound);
+    // The imagery tiles of the last frame (tiles empty without imagery).
+    const TileImageryFrame& imagery_frame() const { return imagery_frame_; }
 
     // The visible tiles of the last frame, as (row, col).
     const std::vector<std::pair<int, int>>& visible_tiles() const { return visible_keys_; }
@@ -117,6 +132,8 @@ private:
     void select(const Camera& camera, double c_rottger, const Frustum& frustum, TileFrameStats& stats);
     // Loads, refines and appends the fans of the picked tiles row by row.
     void draw(const Camera& camera, double c_rottger, const Frustum& frustum, TileFrameStats& stats, MeshArrays& out);
+    // Loads the imagery of the visible tiles near the camera (set_imagery).
+    void stream_imagery(const Camera& camera, TileFrameStats& stats);
 
     TileGrid grid_;
     TileLoader loader_;
@@ -132,6 +149,12 @@ private:
     std::vector<Tile*> window_; // (2R+1)^2 window around the viewer's tile (loaded this frame)
     std::vector<int> window_level_; // level of each visible tile in the window, -1 elsewhere
     int win_r0_ = 0, win_c0_ = 0, win_w_ = 0; // the window's first tile row, column and width
+    // Imagery tiles: LRU by tile index, front = most recently used.
+    TileImageryLoader imagery_loader_;
+    std::size_t imagery_bound_ = 0, imagery_bytes_ = 0;
+    std::list<std::pair<std::size_t, std::shared_ptr<const TileImagery>>> imagery_lru_;
+    std::unordered_map<std::size_t, decltype(imagery_lru_)::iterator> imagery_cache_;
+    TileImageryFrame imagery_frame_;
 };
 
 } // namespace overflight

@@ -36,7 +36,9 @@ public:
         stats.tiles = tiles_->build_mesh(view.camera, error_px_, mesh_);
         stats.add_step_since("quadtree", t0); // select, load, refine and fans together
         stats.triangles = (long long)mesh_.triangle_count();
-        return MethodOutput::of_mesh(mesh_);
+        MethodOutput out = MethodOutput::of_mesh(mesh_);
+        if (tiles_->imagery_frame().layout.present()) out.tile_imagery = &tiles_->imagery_frame();
+        return out;
     }
     void scale_detail(double factor) override {
         error_px_ = std::clamp(error_px_ / factor, MethodSettings::kMinErrorPx, MethodSettings::kMaxErrorPx);

@@ -49,6 +49,7 @@ struct MethodOutput {
     const DepthImage* depth = nullptr; // Images: window depth for the camera's near/far
     const MeshArrays* mesh = nullptr;  // Mesh: world coordinates
     ResidentSurface surface = ResidentSurface::Mesh; // Resident
+    const TileImageryFrame* tile_imagery = nullptr;   // Mesh: the imagery tiles it shows (quadtree over tiles)
 
     static MethodOutput images(const ColorImage& color, const DepthImage& depth);
     static MethodOutput of_mesh(const MeshArrays& mesh);

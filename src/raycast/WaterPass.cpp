@@ -42,7 +42,8 @@ constexpr int kPyramidLevels = 31;
 
 } // namespace
 
-WaterPass::WaterPass(const Terrain& terrain) : terrain_(terrain), pyramid_(terrain, kPyramidLevels) {}
+WaterPass::WaterPass(const Terrain& terrain)
+    : terrain_(terrain), top_(terrain.max_height()), pyramid_(terrain, kPyramidLevels) {}
 
 void WaterPass::set_colors(const std::vector<Rgb8>* colors, const Environment& env) {
     colors_ = terrain_.imagery() ? albedo_lighting_.colors(env) : colors;
@@ -58,7 +59,7 @@ long long WaterPass::apply(const Camera& camera, const Environment& env, Surface
     if (skipping_) marcher.set_pyramid(&pyramid_);
     const RayMarcher::Frame frame = marcher.frame(camera);
     const double level = env.water_level;
-    const double top = double(t.max_height());
+    const double top = top_;
     const Unprojection pixels(frame.inverse_view_projection, camera.width);
     std::atomic<long long> flooded{0};
     tbb::parallel_for(0, camera.height, [&](int row) {

@@ -70,6 +70,7 @@ private:
                           DepthImage& depth) const;
 
     const Terrain& terrain_;
+    const double top_; // Terrain::max_height(), which reads every sample
     const std::vector<Rgb8>* colors_ = nullptr;
     TerrainLighting albedo_lighting_{terrain_}; // used over imagery only
     HeightPyramid pyramid_;

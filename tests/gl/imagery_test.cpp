@@ -206,7 +206,9 @@ TEST(Imagery, ImageryBeyondTheMemoryBoundIsDecimatedWithAWarning) {
     ASSERT_NE(d.terrain.imagery(), nullptr);
     EXPECT_EQ(d.terrain.imagery()->level(0).width, n / 2);
     ASSERT_EQ(d.info.warnings.size(), 1u);
-    EXPECT_EQ(d.info.warnings[0], color + ": imagery of more than 1 MiB; read decimated by 2 to 333x333");
+    EXPECT_EQ(d.info.warnings[0], color + ": imagery of more than 1 MiB (--imagery-memory-mib); shown decimated by 2 to "
+                                          "333x333; for its full resolution tile it (overflight tile DEM --color " +
+                                          color + " -o DIR) and view DIR, whose quadtree streams the imagery tiles");
     const test::RunResult r = test::run_overflight("info '" + dem + "' --color '" + color + "' --imagery-memory-mib 0");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "overflight: --imagery-memory-mib: 0 is not in 1..1048576\n");
