@@ -1,6 +1,8 @@
 // Based on: Szenberg et al. 1997 sec. 5 and 7 (Tables 1 and 2).
 #include "gl/HeadlessRenderer.h"
 
+#include "core/Error.h"
+
 #include <string_view>
 
 namespace overflight::gl {
@@ -19,6 +21,19 @@ double FrameTimings::total_ms() const {
 
 HeadlessRenderer::HeadlessRenderer(const Terrain& terrain, const Scene& scene)
     : context_(std::make_unique<HeadlessContext>()), compositor_(std::make_unique<Compositor>(terrain, scene)) {}
+
+HeadlessRenderer::~HeadlessRenderer() {
+    // GL deletes objects in whichever context is current, and another
+    // renderer may have drawn last on this thread: delete in our own. (A
+    // context current on another thread cannot be taken; EGL refuses, and the
+    // caller was told to release it first.)
+    try {
+        context_->make_current();
+    } catch (const Error&) {
+    }
+    target_.reset();
+    compositor_.reset();
+}
 
 void HeadlessRenderer::render(const MethodOutput& out, const Camera& camera, const Environment& environment,
                               const CompositeOptions& options, ColorImage& color, DepthImage* depth,

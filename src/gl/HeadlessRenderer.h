@@ -29,6 +29,10 @@ public:
     // Creates the context (Error("opengl", ...) if impossible) and uploads the
     // objects of `scene` on `terrain` (which must outlive the renderer).
     HeadlessRenderer(const Terrain& terrain, const Scene& scene);
+    // Deletes the GL objects in this renderer's context (made current).
+    ~HeadlessRenderer();
+    HeadlessRenderer(const HeadlessRenderer&) = delete;
+    HeadlessRenderer& operator=(const HeadlessRenderer&) = delete;
 
     // Composites `out` (Compositor::draw), then reads back the color
     // ("present") and, when `depth` is not null, the depth ("depth_readback";
@@ -39,8 +43,8 @@ public:
 
     std::string renderer_name() const { return Context::renderer(); }
     // Makes the renderer's context current on the calling thread: a caller
-    // rendering from several threads makes it current before destroying the
-    // renderer, whose GL objects are deleted in that context.
+    // rendering from several threads releases it on the others before
+    // destroying the renderer, whose GL objects are deleted in that context.
     void make_current() { context_->make_current(); }
     Compositor& compositor() { return *compositor_; }
 
