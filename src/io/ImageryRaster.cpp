@@ -62,11 +62,20 @@ struct GeoGrid {
 };
 GeoGrid geo_grid(GDALDatasetH picked, const ImageryTarget& target, const std::string& color_path) {
     GeoGrid g;
-    g.res = std::abs(gdal::SuggestedWarpOutput(picked, target.wkt, color_path, "cannot place it on the DEM").geotransform[1]);
+    const gdal::SuggestedWarpOutput out(picked, target.wkt, color_path, "cannot place it on the DEM");
+    g.res = std::abs(out.geotransform[1]);
     g.xmin = target.gt[0];
     g.xmax = target.gt[0] + target.gt[1] * target.cols;
     g.ya = target.gt[3];
     g.yb = target.gt[3] + target.gt[5] * target.rows;
+    // The raster's footprint in the DEM's CRS (the suggested grid's bounds)
+    // must meet the DEM's extent; windows cut from a raster elsewhere would
+    // hold nothing but the fallback.
+    const double cx0 = out.geotransform[0], cx1 = cx0 + out.geotransform[1] * out.cols;
+    const double cy0 = out.geotransform[3], cy1 = cy0 + out.geotransform[5] * out.rows;
+    if (std::max(std::min(cx0, cx1), g.xmin) >= std::min(std::max(cx0, cx1), g.xmax) ||
+        std::max(std::min(cy0, cy1), std::min(g.ya, g.yb)) >= std::min(std::max(cy0, cy1), std::max(g.ya, g.yb)))
+        throw Error(color_path, "color raster does not overlap the DEM");
     g.w = std::max(1.0, std::round((g.xmax - g.xmin) / g.res));
     g.h = std::max(1.0, std::round(std::abs(g.yb - g.ya) / g.res));
     return g;

@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 using namespace overflight;
 using test::black_pixels;
@@ -131,6 +132,12 @@ TEST(Imagery, AColorRasterOffTheDemIsAOneLineError) {
     const test::RunResult r = test::run_overflight("info '" + dem + "' --color '" + color + "'");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "overflight: " + color + ": color raster does not overlap the DEM\n");
+    // Tiled in windows, the same raster is the same error, before any tile is written.
+    const std::string tiles = dir / "tiles";
+    const test::RunResult t = test::run_overflight("tile '" + dem + "' --color '" + color + "' -o '" + tiles + "' --tile-size 33");
+    EXPECT_EQ(t.exit_code, 1);
+    EXPECT_EQ(t.err, "overflight: " + color + ": color raster does not overlap the DEM\n");
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(tiles) / "index.json"));
 }
 
 TEST(Imagery, InfoReportsTheImagerysSizeResolutionAndCoverage) {
