@@ -3,7 +3,8 @@
 // and reports medians, so methods are compared as ratios measured on the same
 // machine at the same moment: Szenberg's Table 1 (steps of the composite) and
 // Table 2 (Z-buffer representations), ROAM's tessellation rate and error curve
-// (CMSC 23700 project 2a), and Zamri's accuracy of the LOD meshes against the full mesh.
+// (CMSC 23700 project 2a), Zamri's accuracy of the LOD meshes against the full mesh, and
+// the ray caster's distance LOD against its exact cast (sky mask, silhouette rows).
 #include "CameraOptions.h"
 #include "ClassicBench.h"
 #include "Commands.h"
