@@ -2,9 +2,10 @@
 // How closely the ray caster's distance LOD (RaycastOptions::lod) keeps the
 // exact cast's outline: the two depth images of the same camera are compared
 // where they differ most visibly, at the sky. A LOD that samples the
-// max-height pyramid can only raise distant silhouettes (a max bounds every
-// sample below it), so the measure is the sky mask and the topmost terrain row
-// of each column, not colors.
+// max-height pyramid mostly raises distant silhouettes (a max bounds every
+// sample below it; its coarser slices can still step over a thin ridge), so
+// the measure is the sky mask and the topmost terrain row of each column, not
+// colors.
 //
 // Based on: the pyramids of HeightPyramid (max heights, mean colors) and the
 // window depth of DESIGN sec. 2 (1.0 = sky, nothing hit).
