@@ -3,7 +3,8 @@
 // and reports medians, so methods are compared as ratios measured on the same
 // machine at the same moment: Szenberg's Table 1 (steps of the composite) and
 // Table 2 (Z-buffer representations), ROAM's tessellation rate and error curve
-// (CMSC 23700 project 2a), and Zamri's accuracy of the LOD meshes against the full mesh.
+// (CMSC 23700 project 2a), Zamri's accuracy of the LOD meshes against the full mesh, and
+// the ray caster's distance LOD against its exact cast (sky mask, silhouette rows).
 #include "CameraOptions.h"
 #include "ClassicBench.h"
 #include "Commands.h"
@@ -17,6 +18,8 @@
 #include "core/SunLight.h"
 #include "io/TileDirectory.h"
 #include "lod/QuadtreeAccuracy.h"
+#include "raycast/FloatingHorizon.h"
+#include "raycast/LodAccuracy.h"
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -29,6 +32,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 namespace overflight::app {
 
@@ -46,6 +50,29 @@ constexpr double kMethodBudgetMs = 15000.0;
 
 void add_accuracy(nlohmann::json& run, const MethodEntry& m, RenderSession& session, const Camera& camera,
                   const DepthImage& mesh_depth);
+
+// The distance LOD's outline against the exact cast of the same camera at
+// 1920x1080, whatever size the run times (the measure's resolution is fixed
+// so that its pixel tolerance means the same at every size): the share of
+// pixels whose sky mask agrees and of columns whose topmost terrain row is
+// within one pixel.
+nlohmann::json lod_accuracy(const DataSet& data, RaycastOptions options, Camera camera) {
+    camera.width = 1920;
+    camera.height = 1080;
+    FloatingHorizon caster(data.terrain);
+    ColorImage color;
+    DepthImage exact, lod;
+    options.lod = false;
+    caster.render(camera, data.environment, options, color, exact);
+    options.lod = true;
+    caster.render(camera, data.environment, options, color, lod);
+    const SilhouetteAgreement a = compare_silhouettes(lod, exact, 1);
+    return {{"width", camera.width},
+            {"height", camera.height},
+            {"sky_mask_agreement", a.sky_share()},
+            {"silhouette_within_1px", a.column_share()},
+            {"max_silhouette_rows", a.max_row_difference}};
+}
 
 // What the timed frames of one environment gave: wall-clock ms and each
 // step's ms per frame, and the last frame's stats.
@@ -122,6 +149,8 @@ std::vector<nlohmann::json> bench_method(const MethodEntry& m, RenderSession& se
         run["ms_tessellate_100000"] = roam["ms_tessellate_100000"];
         run["error_curve"] = roam["curve"];
     }
+    if (std::string_view(m.name) == "voxel" && session.settings().raycast.lod)
+        run["lod_accuracy"] = lod_accuracy(session.data(), session.settings().raycast, camera);
     if (method.output_kind() == MethodOutputKind::Mesh)
         if (const DepthImage* depth = full_mesh_depth()) add_accuracy(run, m, session, camera, *depth);
     return runs;
@@ -220,6 +249,15 @@ void print_markdown(const nlohmann::json& out, const std::string& terrain, const
                     r.contains("depth_within_3pct") ? fmt("%.2f %%", 100.0 * r["depth_within_3pct"].get<double>()).c_str()
                                                     : "-");
     }
+    for (const auto& r : runs)
+        if (r.contains("lod_accuracy")) {
+            const nlohmann::json& a = r["lod_accuracy"];
+            std::printf("\n%s distance LOD against the exact cast at %dx%d: sky mask agrees on %.2f %% of pixels, "
+                        "silhouette within 1 px on %.2f %% of columns (largest difference %d rows)\n",
+                        r["method"].get<std::string>().c_str(), a["width"].get<int>(), a["height"].get<int>(),
+                        100.0 * a["sky_mask_agreement"].get<double>(), 100.0 * a["silhouette_within_1px"].get<double>(),
+                        a["max_silhouette_rows"].get<int>());
+        }
     for (const auto& r : runs)
         if (r.contains("x_without_looks"))
             std::printf("%s / without = %.3fx\n", r["method"].get<std::string>().c_str(),

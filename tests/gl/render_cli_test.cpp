@@ -187,6 +187,25 @@ TEST(BenchCli, JsonListsVoxelAndLiteral) {
     EXPECT_EQ(j["runs"][0]["samples"], j["runs"][1]["samples"]);
 }
 
+// bench --lod measures the distance LOD's outline against the exact cast at 1080p.
+TEST(BenchCli, LodReportsItsOutlineAgainstTheExactCast) {
+    const RunResult r = run_overflight("bench demo --demo-size 65 --json --size 40x24 --frames 1 --methods voxel --lod");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["runs"].size(), 1u);
+    const auto& a = j["runs"][0]["lod_accuracy"];
+    EXPECT_EQ(a["width"], 1920);
+    EXPECT_EQ(a["height"], 1080);
+    for (const char* share : {"sky_mask_agreement", "silhouette_within_1px"}) {
+        EXPECT_GT(a[share].get<double>(), 0.9) << share;
+        EXPECT_LE(a[share].get<double>(), 1.0) << share;
+    }
+    // Without --lod there is nothing to compare.
+    const RunResult exact = run_overflight("bench demo --demo-size 65 --json --size 40x24 --frames 1 --methods voxel");
+    ASSERT_EQ(exact.exit_code, 0) << exact.err;
+    EXPECT_FALSE(nlohmann::json::parse(exact.out)["runs"][0].contains("lod_accuracy"));
+}
+
 TEST(BenchCli, DefaultRunsEveryMethodWithStepsAndAccuracy) {
     const RunResult r = run_overflight("bench demo --demo-size 65 --json --size 64x36 --frames 1");
     ASSERT_EQ(r.exit_code, 0) << r.err;
