@@ -4,22 +4,14 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <limits>
-#include <new>
-
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
 
 namespace overflight {
-
-void ImageryTexels::TiledTexels::Free::operator()(Rgba8* p) const { std::free(p); }
 
 void ImageryTexels::bind(const ImageryPyramid* pyramid) {
     pyramid_ = pyramid;
     levels_.clear();
-    texels_ = TiledTexels{};
+    texels_.clear();
     lanes_ = LevelLanes{};
     lane_tables_ = false;
     if (!pyramid) return;
@@ -34,16 +26,9 @@ void ImageryTexels::bind(const ImageryPyramid* pyramid) {
         levels_.push_back(lv);
     }
     last_level_ = pyramid->levels() - 1;
-    constexpr std::size_t kHugePage = std::size_t(1) << 21;
-    const std::size_t bytes = (std::size_t(total) * sizeof(Rgba8) + kHugePage - 1) / kHugePage * kHugePage;
-    void* mem = std::aligned_alloc(kHugePage, bytes);
-    if (!mem) throw std::bad_alloc();
-#ifdef __linux__
-    if (!std::getenv("NOHUGE")) madvise(mem, bytes, MADV_HUGEPAGE); // advice only: without it the pages stay 4 KiB
-#endif
     // Padding texels past a level's edge are never read (at() clamps first).
-    texels_.texels.reset(static_cast<Rgba8*>(mem));
-    Rgba8* out = texels_.texels.get();
+    texels_.assign(std::size_t(total), Rgba8{});
+    Rgba8* out = texels_.data();
     for (int l = 0; l < pyramid->levels(); ++l) {
         const Image2D<Rgba8>& img = pyramid->level(l);
         const Level& lv = levels_[std::size_t(l)];

@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 namespace overflight {
@@ -58,8 +57,10 @@ public:
     // texels (64 bytes, row-major within the page), a line row-major. (Two
     // levels of the blocking of Hakura and Gupta, "The Design and Analysis of
     // a Cache Architecture for Texture Mapping", ISCA 1997, sec. 4.) A level
-    // of w x h texels takes tiles_x = ceil(w / 32) pages per page row.
-    static constexpr int kPageSide = 32, kLineSide = 4;
+    // of w x h texels takes tiles_x = ceil(w / 32) pages per page row. The
+    // copy is made once by bind(): the caster holds the imagery twice (the
+    // pyramid stays row-major for the GL methods).
+    static constexpr int kPageSide = 32;
     static std::size_t tiled_index(int col, int row, int tiles_x) {
         const unsigned c = unsigned(col), r = unsigned(row);
         const std::size_t page = std::size_t(r >> 5) * std::size_t(tiles_x) + (c >> 5);
@@ -95,19 +96,9 @@ public:
     bool lane_tables() const { return lane_tables_; }
 
 private:
-    // Texels on 2 MiB boundaries, offered to the kernel as huge pages: the
-    // gathers of a frame spread over the whole imagery, which 4 KiB pages
-    // would cover with far more entries than a TLB holds.
-    struct TiledTexels {
-        struct Free {
-            void operator()(Rgba8* p) const;
-        };
-        std::unique_ptr<Rgba8[], Free> texels;
-        const Rgba8* data() const { return texels.get(); }
-    };
     const ImageryPyramid* pyramid_ = nullptr;
     std::vector<Level> levels_;
-    TiledTexels texels_;
+    std::vector<Rgba8> texels_;
     LevelLanes lanes_;
     bool lane_tables_ = false;
     float x0_ = 0, z0_ = 0;
