@@ -1,32 +1,52 @@
 // See ImageryTexels.h.
 #include "raycast/ImageryTexels.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cmath>
+#include <limits>
 
 namespace overflight {
 
 void ImageryTexels::bind(const ImageryPyramid* pyramid) {
     pyramid_ = pyramid;
     levels_.clear();
+    texels_.clear();
     lanes_ = LevelLanes{};
+    lane_tables_ = false;
     if (!pyramid) return;
     x0_ = float(pyramid->x0());
     z0_ = float(pyramid->z0());
+    std::int64_t total = 0;
     for (int l = 0; l < pyramid->levels(); ++l) {
         const Image2D<Rgba8>& img = pyramid->level(l);
-        levels_.push_back(Level{img.pixels.data(), img.width, img.height, float(1.0 / pyramid->texel_x(l)),
-                                float(1.0 / pyramid->texel_z(l))});
+        Level lv{img.width, img.height, float(1.0 / pyramid->texel_x(l)), float(1.0 / pyramid->texel_z(l)),
+                 (img.width + kPageSide - 1) / kPageSide, total};
+        total += std::int64_t(lv.tiles_x) * ((img.height + kPageSide - 1) / kPageSide) * kPageSide * kPageSide;
+        levels_.push_back(lv);
     }
     last_level_ = pyramid->levels() - 1;
-    // Offsets between separate allocations, taken as integers (the kernels
-    // that add them to level 0's address do so as integers too).
-    const auto base = reinterpret_cast<std::uintptr_t>(levels_[0].texels);
-    for (const Level& l : levels_) {
-        lanes_.inv_x.push_back(l.inv_x);
-        lanes_.inv_z.push_back(l.inv_z);
-        lanes_.w.push_back(l.w);
-        lanes_.h.push_back(l.h);
-        lanes_.offset.push_back(static_cast<long long>(reinterpret_cast<std::uintptr_t>(l.texels) - base));
+    // Padding texels past a level's edge are never read (at() clamps first).
+    texels_.assign(std::size_t(total), Rgba8{});
+    Rgba8* out = texels_.data();
+    for (int l = 0; l < pyramid->levels(); ++l) {
+        const Image2D<Rgba8>& img = pyramid->level(l);
+        const Level& lv = levels_[std::size_t(l)];
+        tbb::parallel_for(0, img.height, [&](int row) {
+            for (int col = 0; col < img.width; ++col)
+                out[std::size_t(lv.first) + tiled_index(col, row, lv.tiles_x)] = img.at(col, row);
+        });
+    }
+    lane_tables_ = total <= std::numeric_limits<std::int32_t>::max() && pyramid->levels() <= LevelLanes::kLevels;
+    if (!lane_tables_) return;
+    for (int l = 0; l < LevelLanes::kLevels; ++l) {
+        const Level& lv = levels_[std::size_t(std::min(l, last_level_))];
+        lanes_.inv_x[l] = lv.inv_x;
+        lanes_.inv_z[l] = lv.inv_z;
+        lanes_.w[l] = lv.w;
+        lanes_.h[l] = lv.h;
+        lanes_.tiles_x[l] = lv.tiles_x;
+        lanes_.first[l] = int(lv.first);
     }
 }
 

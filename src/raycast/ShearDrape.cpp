@@ -13,6 +13,19 @@ namespace overflight {
 namespace {
 
 #if OVERFLIGHT_DRAPE_AVX2
+// Entry lvl of a 16-entry table (ImageryTexels::LevelLanes) per lane: the
+// lower or upper 8 permuted, chosen by upper (lvl > 7).
+__attribute__((target("avx2"))) inline __m256i pick(const int* table, __m256i lvl, __m256i upper) {
+    const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(table)), lvl);
+    const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(table + 8)), lvl);
+    return _mm256_blendv_epi8(lo, hi, upper);
+}
+__attribute__((target("avx2"))) inline __m256 pick(const float* table, __m256i lvl, __m256i upper) {
+    const __m256 lo = _mm256_permutevar8x32_ps(_mm256_load_ps(table), lvl);
+    const __m256 hi = _mm256_permutevar8x32_ps(_mm256_load_ps(table + 8), lvl);
+    return _mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(upper));
+}
+
 // Lanes [i, i + 8) of a block: drape_pixel lane by lane (DrapeRun's slope of
 // the run's top row found on the way down), modulate_light with 16-bit
 // multiplies (each channel's l a + 64 fits: 255 x 255 + 64 < 2^16).
@@ -26,7 +39,7 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
     const ImageryTexels::LevelLanes& lv = im.level_lanes();
     const float* slog = im.slice_log2();
     const float* rlog = im.row_log2();
-    const char* texels = reinterpret_cast<const char*>(im.level_at(0).texels);
+    const int* texels = reinterpret_cast<const int*>(im.texels());
     const __m256i jendv = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(jend + i));
     const __m256 dx = _mm256_loadu_ps(dir_x + i), dz = _mm256_loadu_ps(dir_z + i);
     const __m256 eye_x = _mm256_set1_ps(f.eye_x), eye_z = _mm256_set1_ps(f.eye_z);
@@ -35,6 +48,8 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
     const __m256 d_before = _mm256_set1_ps(f.d_before_first);
     const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
     const __m256i last = _mm256_set1_epi32(im.last_level());
+    const __m256i seven = _mm256_set1_epi32(7);
+    const __m256i c28 = _mm256_set1_epi32(28), c3 = _mm256_set1_epi32(3);
     const __m256i rb_mask = _mm256_set1_epi32(0x00FF00FF), byte = _mm256_set1_epi32(0xFF);
     const __m256i round = _mm256_set1_epi32(0x00400040), max_rb = _mm256_set1_epi32(0x00FF00FF);
     __m256 m_top = zero_f;
@@ -68,23 +83,25 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
         const __m256 l = _mm256_add_ps(_mm256_add_ps(_mm256_i32gather_ps(slog, k, 4), _mm256_set1_ps(rlog[j])), half);
         const __m256i lvl = _mm256_min_epi32(_mm256_max_epi32(_mm256_cvttps_epi32(l), zero), last);
         // ImageryTexels::at.
-        const __m256i w = _mm256_i32gather_epi32(lv.w.data(), lvl, 4);
-        const __m256i h = _mm256_i32gather_epi32(lv.h.data(), lvl, 4);
+        const __m256i upper = _mm256_cmpgt_epi32(lvl, seven);
+        const __m256i w = pick(lv.w, lvl, upper);
+        const __m256i h = pick(lv.h, lvl, upper);
         const __m256i col = _mm256_min_epi32(
-            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(x, x0), _mm256_i32gather_ps(lv.inv_x.data(), lvl, 4))), zero),
+            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(x, x0), pick(lv.inv_x, lvl, upper))), zero),
             _mm256_sub_epi32(w, one));
         const __m256i row = _mm256_min_epi32(
-            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(z, z0), _mm256_i32gather_ps(lv.inv_z.data(), lvl, 4))), zero),
+            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(z, z0), pick(lv.inv_z, lvl, upper))), zero),
             _mm256_sub_epi32(h, one));
-        const __m256i idx = _mm256_add_epi32(_mm256_mullo_epi32(row, w), col);
-        const auto* offsets = reinterpret_cast<const long long*>(lv.offset.data());
-        const __m128i lvl_lo = _mm256_castsi256_si128(lvl), lvl_hi = _mm256_extracti128_si256(lvl, 1);
-        const __m256i at_lo = _mm256_add_epi64(_mm256_i32gather_epi64(offsets, lvl_lo, 8),
-                                               _mm256_slli_epi64(_mm256_cvtepi32_epi64(_mm256_castsi256_si128(idx)), 2));
-        const __m256i at_hi = _mm256_add_epi64(_mm256_i32gather_epi64(offsets, lvl_hi, 8),
-                                               _mm256_slli_epi64(_mm256_cvtepi32_epi64(_mm256_extracti128_si256(idx, 1)), 2));
-        const __m256i albedo = _mm256_set_m128i(_mm256_i64gather_epi32(reinterpret_cast<const int*>(texels), at_hi, 1),
-                                                _mm256_i64gather_epi32(reinterpret_cast<const int*>(texels), at_lo, 1));
+        // ImageryTexels::tiled_index, plus the level's first texel.
+        const __m256i page = _mm256_add_epi32(
+            _mm256_mullo_epi32(_mm256_srli_epi32(row, 5), pick(lv.tiles_x, lvl, upper)),
+            _mm256_srli_epi32(col, 5));
+        const __m256i in_page = _mm256_or_si256(
+            _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(row, c28), 5), _mm256_slli_epi32(_mm256_and_si256(col, c28), 2)),
+            _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(row, c3), 2), _mm256_and_si256(col, c3)));
+        const __m256i idx = _mm256_add_epi32(pick(lv.first, lvl, upper),
+                                             _mm256_or_si256(_mm256_slli_epi32(page, 10), in_page));
+        const __m256i albedo = _mm256_i32gather_epi32(texels, idx, 4);
         // modulate_light.
         std::uint32_t* out = color + std::size_t(j) * kShearBlock + i;
         const __m256i light = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(out));
@@ -107,7 +124,8 @@ void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir
     static const bool avx2 = resolve_kernel_available(ResolveKernel::Avx2);
     if (kernel == ResolveKernel::Auto)
         kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
-    if (kernel == ResolveKernel::Avx2) {
+    // Imagery of 2^31 texels and more or of more than 16 levels goes the portable way.
+    if (kernel == ResolveKernel::Avx2 && f.imagery->lane_tables()) {
         // Lanes at or past n are painted nowhere.
         alignas(32) int ends[kShearBlock];
         alignas(32) float dxs[kShearBlock], dzs[kShearBlock];

@@ -17,7 +17,8 @@ namespace overflight {
 // dir_z[i]) per unit of view depth, its painted rows are j < jend[i], its
 // pixel j at color/slice[j * kShearBlock + i] (ShearResolve.h's scratch).
 // ResolveKernel::Avx2 must be resolve_kernel_available(); Auto picks it
-// where it is, else runs drape_column per column (ResolveKernel::Portable).
+// where it is, else runs drape_column per column (ResolveKernel::Portable),
+// as both do for imagery without lane tables (ImageryTexels::lane_tables).
 void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir_z, int n, const int* jend,
                        std::uint32_t* color, const std::uint32_t* slice, ResolveKernel kernel = ResolveKernel::Auto);
 

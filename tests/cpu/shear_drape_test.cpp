@@ -69,6 +69,48 @@ TEST(ShearDrape, Avx2KernelGivesTheSameBitsAsTheColumns) {
     }
 }
 
+// Imagery of 17 levels (65537 x 2 texels) has no lane tables: the AVX2
+// kernel asked for drapes column by column, with the same bits.
+TEST(ShearDrape, ImageryWithoutLaneTablesGivesTheSameBits) {
+    std::mt19937 rng(3);
+    Image2D<Rgba8> img(65537, 2);
+    std::uniform_int_distribution<int> byte(0, 255);
+    for (Rgba8& t : img.pixels)
+        t = Rgba8{std::uint8_t(byte(rng)), std::uint8_t(byte(rng)), std::uint8_t(byte(rng)), 255};
+    const ImageryPyramid pyramid(std::move(img), -0.5, -0.5, 41.0, 31.0);
+    ASSERT_EQ(pyramid.levels(), 17);
+    ImageryTexels texels;
+    texels.bind(&pyramid);
+    EXPECT_FALSE(texels.lane_tables());
+    const int H = 40, slices = 50;
+    std::vector<float> slice_d(slices), row_m(H);
+    for (int k = 0; k < slices; ++k) slice_d[std::size_t(k)] = 0.5f + 0.37f * float(k);
+    for (int j = 0; j < H; ++j) row_m[std::size_t(j)] = -0.8f + 0.02f * float(j);
+    texels.prepare_slices(slice_d.data(), slices, 20.0);
+    texels.prepare_rows(row_m.data(), H);
+    const DrapeFrame frame{&texels, slice_d.data(), 0.3f, row_m.data(), 12.5f, 7.25f};
+    std::vector<std::uint32_t> color(std::size_t(kShearBlock) * H), slice(color.size());
+    int jend[kShearBlock];
+    float dx[kShearBlock], dz[kShearBlock];
+    for (int i = 0; i < kShearBlock; ++i) {
+        jend[i] = H - i;
+        dx[i] = 0.1f * float(i) - 1.0f;
+        dz[i] = 1.0f;
+        for (int j = 0; j < H; ++j) {
+            slice[std::size_t(j) * kShearBlock + std::size_t(i)] = std::uint32_t(j + i / 4);
+            color[std::size_t(j) * kShearBlock + std::size_t(i)] = std::uint32_t(rng()) & 0xFFFFFFu;
+        }
+    }
+    std::vector<std::uint32_t> portable = color, avx2 = color;
+    drape_shear_block(frame, dx, dz, kShearBlock, jend, portable.data(), slice.data(), ResolveKernel::Portable);
+    if (resolve_kernel_available(ResolveKernel::Avx2))
+        drape_shear_block(frame, dx, dz, kShearBlock, jend, avx2.data(), slice.data(), ResolveKernel::Avx2);
+    else
+        avx2 = portable;
+    EXPECT_EQ(avx2, portable);
+    EXPECT_NE(portable, color);
+}
+
 // One column of one painted row, worked by hand: slice 1 (view depth 2,
 // the cell from depth 1), a row looking down with slope -0.5 at the run's top,
 // so the ray meets the sample's height at depth 2 straight ahead: world

@@ -1,0 +1,49 @@
+// The ray casters' tiled copy of the imagery (ImageryTexels.h) holds the
+// pyramid's texels: every texel of every level read through the tiled layout
+// is the row-major one, and the layout's index worked by hand.
+#include "core/ImageryPyramid.h"
+#include "raycast/ImageryTexels.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace overflight;
+
+// Pages of 32 x 32 texels, lines of 4 x 4 within a page, texels row-major in a line.
+TEST(ImageryTexels, TiledIndexWorkedByHand) {
+    // Page 0; line (row 1, column 1) of the page is line 9 (16 texels each);
+    // texel (row 2, column 1) of the line is its 9th: 144 + 9.
+    EXPECT_EQ(ImageryTexels::tiled_index(5, 6, 3), 153u);
+    // Page (row 1, column 1) of 3 per row is page 4 (1024 texels each); in it
+    // texel (column 1, row 8): line 16 (row 2, column 0) at 256, texel 1 of it.
+    EXPECT_EQ(ImageryTexels::tiled_index(33, 40, 3), 4096u + 256u + 1u);
+    EXPECT_EQ(ImageryTexels::tiled_index(31, 31, 1), 1023u);
+}
+
+// A 70 x 37 image (pages cut at neither side, odd levels down to 1 x 1).
+TEST(ImageryTexels, TiledLevelsHoldTheRowMajorTexels) {
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> byte(0, 255);
+    Image2D<Rgba8> img(70, 37);
+    for (Rgba8& t : img.pixels)
+        t = Rgba8{std::uint8_t(byte(rng)), std::uint8_t(byte(rng)), std::uint8_t(byte(rng)), std::uint8_t(byte(rng))};
+    const ImageryPyramid pyramid(std::move(img), -3.0, 2.0, 140.0, 74.0);
+    ImageryTexels texels;
+    texels.bind(&pyramid);
+    ASSERT_EQ(pyramid.levels(), 7);
+    for (int l = 0; l < pyramid.levels(); ++l) {
+        const Image2D<Rgba8>& level = pyramid.level(l);
+        for (int row = 0; row < level.height; ++row)
+            for (int col = 0; col < level.width; ++col) {
+                // The texel's centre, in world units.
+                const double x = pyramid.x0() + (col + 0.5) * pyramid.texel_x(l);
+                const double z = pyramid.z0() + (row + 0.5) * pyramid.texel_z(l);
+                ASSERT_EQ(texels.at(float(x), float(z), l), level.at(col, row))
+                    << "level " << l << " column " << col << " row " << row;
+            }
+        // Outside the imagery: the edge texels.
+        EXPECT_EQ(texels.at(-100.0f, -100.0f, l), level.at(0, 0));
+        EXPECT_EQ(texels.at(1000.0f, 1000.0f, l), level.at(level.width - 1, level.height - 1));
+    }
+}
