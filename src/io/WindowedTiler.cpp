@@ -297,7 +297,8 @@ void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::functi
 // the tiles are the same. The least recently used blocks go first beyond
 // the bound; the tile rows are cut in order, so a bound holding five block
 // rows (a tile row, its neighbours and the fill's reach beyond them) reads
-// each block once.
+// each block once. A source on the grid itself is read directly: GDAL's
+// block cache already holds its decoded blocks, and a read is a copy.
 class BlockCache {
 public:
     BlockCache(const Plan& plan, int side, std::int64_t bytes)
@@ -307,6 +308,7 @@ public:
     // As read_metres, through the blocks; `rd` reads the blocks not cached.
     void read(const Reader& rd, int row0, int col0, int rows, int cols, float* z, int stride) {
         if (rows <= 0 || cols <= 0) return;
+        if (plan_.warp.empty()) return read_metres(rd, plan_, row0, col0, rows, cols, z, stride);
         for (int br = row0 / side_; br <= (row0 + rows - 1) / side_; ++br)
             for (int bc = col0 / side_; bc <= (col0 + cols - 1) / side_; ++bc) {
                 const std::shared_ptr<const Block> b = block(rd, br, bc);
