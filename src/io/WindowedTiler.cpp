@@ -387,8 +387,8 @@ CutWindow cut_window(const Reader& rd, BlockCache& cache, const Plan& plan, int 
         std::vector<float> big(std::size_t(bh) * std::size_t(bw));
         cache.read(rd, br0, bc0, bh, bw, big.data(), bw);
         // GDALFillNodata's work planes in memory (its default is LZW GeoTIFFs
-        // in the working directory, written and read back on every call):
-        // the same algorithm on the same numbers, so the same fill.
+        // in the working directory, or CPL_TMPDIR, written and read back on
+        // every call): the same algorithm on the same numbers, the same fill.
         const std::unique_ptr<char*, decltype(&CSLDestroy)> fill_options(
             CSLSetNameValue(nullptr, "TEMP_FILE_DRIVER", "MEM"), &CSLDestroy);
         gdal::Dataset mem = gdal::create_mem(plan.path, bw, bh, 1, GDT_Float32);
