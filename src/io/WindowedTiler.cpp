@@ -15,6 +15,7 @@
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_string.h>
 #include <gdal_alg.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -27,11 +28,13 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <list>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <unordered_map>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -282,6 +285,86 @@ void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::functi
     plan.checksum = buf;
 }
 
+// The terrain grid in metres (kNoData where missing), as read_metres gives
+// it, kept in blocks aligned to the tile grid that the tiles in flight share.
+// Each window of a tile overlaps its neighbours' (the apron and the hill
+// shading's margin), and a window holding no-data is widened by the fill's
+// search distance, as far as the tiles around it: read per window, a sample
+// near a void or the wedges of a reprojected source was warped up to nine
+// times. Here each block is read once while it stays in the cache, whichever
+// thread needs it first, and a window is copied from its blocks: a sample's
+// value does not depend on the window that reads it (io/MetricWarp.h), so
+// the tiles are the same. The least recently used blocks go first beyond
+// the bound; the tile rows are cut in order, so a bound holding five block
+// rows (a tile row, its neighbours and the fill's reach beyond them) reads
+// each block once. A source on the grid itself is read directly: GDAL's
+// block cache already holds its decoded blocks, and a read is a copy.
+class BlockCache {
+public:
+    BlockCache(const Plan& plan, int side, std::int64_t bytes)
+        : plan_(plan), side_(side), block_cols_((plan.cols + side - 1) / side),
+          capacity_(std::size_t(std::max<std::int64_t>(1, bytes / (std::int64_t(side) * side * 4)))) {}
+
+    // As read_metres, through the blocks; `rd` reads the blocks not cached.
+    void read(const Reader& rd, int row0, int col0, int rows, int cols, float* z, int stride) {
+        if (rows <= 0 || cols <= 0) return;
+        if (plan_.warp.empty()) return read_metres(rd, plan_, row0, col0, rows, cols, z, stride);
+        for (int br = row0 / side_; br <= (row0 + rows - 1) / side_; ++br)
+            for (int bc = col0 / side_; bc <= (col0 + cols - 1) / side_; ++bc) {
+                const std::shared_ptr<const Block> b = block(rd, br, bc);
+                const int i0 = std::max(row0, br * side_), i1 = std::min(row0 + rows, br * side_ + b->rows);
+                const int j0 = std::max(col0, bc * side_), j1 = std::min(col0 + cols, bc * side_ + b->cols);
+                for (int i = i0; i < i1; ++i)
+                    std::copy_n(b->z.data() + std::size_t(i - br * side_) * b->cols + std::size_t(j0 - bc * side_), j1 - j0,
+                                z + std::size_t(i - row0) * stride + std::size_t(j0 - col0));
+            }
+    }
+
+private:
+    struct Block {
+        std::once_flag once;
+        int rows = 0, cols = 0;
+        std::vector<float> z;
+    };
+    using Key = std::int64_t;
+
+    std::shared_ptr<const Block> block(const Reader& rd, int br, int bc) {
+        const Key key = Key(br) * block_cols_ + bc;
+        std::shared_ptr<Block> b;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (const auto it = blocks_.find(key); it != blocks_.end()) {
+                recent_.splice(recent_.begin(), recent_, it->second.second);
+                b = it->second.first;
+            } else {
+                b = std::make_shared<Block>();
+                recent_.push_front(key);
+                blocks_.emplace(key, std::make_pair(b, recent_.begin()));
+                while (blocks_.size() > capacity_) {
+                    blocks_.erase(recent_.back());
+                    recent_.pop_back();
+                }
+            }
+        }
+        // Outside the lock: other threads read other blocks meanwhile; one
+        // asking for this block waits for it (a read that throws leaves it
+        // to the next).
+        std::call_once(b->once, [&] {
+            b->rows = std::min(side_, plan_.rows - br * side_);
+            b->cols = std::min(side_, plan_.cols - bc * side_);
+            read_metres(rd, plan_, br * side_, bc * side_, b->rows, b->cols, b->z);
+        });
+        return b;
+    }
+
+    const Plan& plan_;
+    const int side_, block_cols_;
+    const std::size_t capacity_;
+    std::mutex mutex_;
+    std::list<Key> recent_; // most recently used first
+    std::unordered_map<Key, std::pair<std::shared_ptr<Block>, std::list<Key>::iterator>> blocks_;
+};
+
 // The samples of tile (r, c) and its apron, plus one sample around them, as a
 // window of the terrain (heights and colors) with no-data filled.
 struct CutWindow {
@@ -290,10 +373,10 @@ struct CutWindow {
 };
 
 // Rows r0 .. r1 and columns c0 .. c1 of the terrain.
-CutWindow cut_window(const Reader& rd, const Plan& plan, int r0, int r1, int c0, int c1) {
+CutWindow cut_window(const Reader& rd, BlockCache& cache, const Plan& plan, int r0, int r1, int c0, int c1) {
     const int h = r1 - r0 + 1, w = c1 - c0 + 1;
-    std::vector<float> z;
-    read_metres(rd, plan, r0, c0, h, w, z);
+    std::vector<float> z(std::size_t(h) * std::size_t(w));
+    cache.read(rd, r0, c0, h, w, z.data(), w);
     if (std::find(z.begin(), z.end(), kNoData) != z.end()) {
         // The fill of a sample reads only the samples within the search
         // distance, so this wider window fills the core as the whole raster would.
@@ -301,22 +384,19 @@ CutWindow cut_window(const Reader& rd, const Plan& plan, int r0, int r1, int c0,
         const int br0 = std::max(0, r0 - d), br1 = std::min(plan.rows - 1, r1 + d);
         const int bc0 = std::max(0, c0 - d), bc1 = std::min(plan.cols - 1, c1 + d);
         const int bh = br1 - br0 + 1, bw = bc1 - bc0 + 1;
-        // The window already read, and the ring around it: a sample reads
-        // the same whatever window holds it (io/MetricWarp.h), so the window
-        // is not warped twice.
         std::vector<float> big(std::size_t(bh) * std::size_t(bw));
-        float* at = big.data() + std::size_t(r0 - br0) * bw + std::size_t(c0 - bc0);
-        for (int i = 0; i < h; ++i) std::copy_n(z.data() + std::size_t(i) * w, w, at + std::size_t(i) * bw);
-        read_metres(rd, plan, br0, bc0, r0 - br0, bw, big.data(), bw);                                        // above
-        read_metres(rd, plan, r1 + 1, bc0, br1 - r1, bw, big.data() + std::size_t(r1 + 1 - br0) * bw, bw);    // below
-        read_metres(rd, plan, r0, bc0, h, c0 - bc0, big.data() + std::size_t(r0 - br0) * bw, bw);             // left
-        read_metres(rd, plan, r0, c1 + 1, h, bc1 - c1, at + w, bw);                                           // right
+        cache.read(rd, br0, bc0, bh, bw, big.data(), bw);
+        // GDALFillNodata's work planes in memory (its default is LZW GeoTIFFs
+        // in the working directory, or CPL_TMPDIR, written and read back on
+        // every call): the same algorithm on the same numbers, the same fill.
+        const std::unique_ptr<char*, decltype(&CSLDestroy)> fill_options(
+            CSLSetNameValue(nullptr, "TEMP_FILE_DRIVER", "MEM"), &CSLDestroy);
         gdal::Dataset mem = gdal::create_mem(plan.path, bw, bh, 1, GDT_Float32);
         GDALRasterBandH band = GDALGetRasterBand(mem.get(), 1);
         GDALSetRasterNoDataValue(band, kNoData);
         CPLErrorReset();
         if (GDALRasterIO(band, GF_Write, 0, 0, bw, bh, big.data(), bw, bh, GDT_Float32, 0, 0) != CE_None ||
-            GDALFillNodata(band, nullptr, double(d), 0, 0, nullptr, nullptr, nullptr) != CE_None ||
+            GDALFillNodata(band, nullptr, double(d), 0, 0, fill_options.get(), nullptr, nullptr) != CE_None ||
             GDALRasterIO(band, GF_Read, c0 - bc0, r0 - br0, w, h, z.data(), w, h, GDT_Float32, 0, 0) != CE_None)
             throw Error(plan.path, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
         for (float& v : z) {
@@ -353,8 +433,9 @@ std::array<int, 4> window_of(const Plan& plan, const TileGrid& g, int r, int c) 
     return {std::max(0, r0), std::min(plan.rows - 1, r1), std::max(0, c0), std::min(plan.cols - 1, c1)};
 }
 
-// Peak bytes of one tile in flight: the widened float window and GDAL's copy
-// of it for the fill, the tile's samples, colors, d2, encoded files; with
+// Peak bytes of one tile in flight: the widened float window, GDAL's copy of
+// it for the fill and the fill's work planes (a UInt16 index, float values, a
+// byte mask), the tile's samples, colors, d2, encoded files; with
 // imagery its warped window, blend, levels and encoded planes.
 std::int64_t bytes_per_tile(const Plan& plan, int tile_size) {
     std::int64_t side = tile_size + 2;
@@ -363,7 +444,7 @@ std::int64_t bytes_per_tile(const Plan& plan, int tile_size) {
                                                                              plan.layout.rows * plan.layout.texel_z()) /
                                                                     plan.h_scale)) + 4);
     side = std::min<std::int64_t>(side + 2 * kFillSearchDistance, std::max(plan.rows, plan.cols));
-    std::int64_t bytes = 12 * side * side + 48 * std::int64_t(tile_size) * tile_size + (16 << 20);
+    std::int64_t bytes = 16 * side * side + 48 * std::int64_t(tile_size) * tile_size + (16 << 20);
     if (plan.layout.present())
         bytes += 40 * std::int64_t(plan.layout.cols + 6) * (plan.layout.rows + 6);
     return bytes;
@@ -421,7 +502,8 @@ TileGrid grid_of(const Plan& plan, int tile_size) {
 }
 
 // How many tiles may be in flight: half the bound is theirs (a quarter is
-// GDAL's block cache, the rest the survey's strips and the index).
+// GDAL's block cache, an eighth the survey's strips and then the cache of
+// warped blocks, the rest the index).
 int workers_within(const Plan& plan, int tile_size, std::int64_t budget) {
     const std::int64_t per_tile = bytes_per_tile(plan, tile_size), for_tiles = budget / 2;
     if (per_tile > for_tiles)
@@ -572,6 +654,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
     int done = 0;
     const int total = int(n);
     const int S = g.stride();
+    BlockCache cache(plan, S, budget / 8);
     const auto cut = [&](int r, int c) {
         std::error_code ec;
         if (!g.present(r, c)) {
@@ -584,7 +667,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         Reader& rd = readers.local();
         open_reader(rd, plan, true);
         const std::array<int, 4> bounds = window_of(plan, g, r, c);
-        CutWindow cw = cut_window(rd, plan, bounds[0], bounds[1], bounds[2], bounds[3]);
+        CutWindow cw = cut_window(rd, cache, plan, bounds[0], bounds[1], bounds[2], bounds[3]);
         std::optional<TileImagery> imagery;
         if (plan.layout.present()) {
             imagery = cut_imagery(rd, plan, g, cw, r, c);

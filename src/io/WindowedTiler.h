@@ -13,9 +13,11 @@
 //      no-data count and a checksum;
 //   2. each tile reads the window of its samples and apron plus one sample
 //      (the hill shading's 3x3); a window holding no-data is widened by
-//      the no-data search distance (256 samples), reading only the ring
-//      around it, and filled there by GDALFillNodata as the loader fills the
-//      whole raster.
+//      the no-data search distance (256 samples) and filled there by
+//      GDALFillNodata as the loader fills the whole raster. A warped
+//      raster's windows are copied from a cache of blocks of the grid
+//      aligned to the tiles (an eighth of the memory bound), each warped
+//      once however many windows overlap it.
 // What equals the in-memory tiler, and what does not:
 //   - a source on square cells of a projected CRS (or none) without no-data:
 //     every tile, apron, d2, overview file byte-identical;
