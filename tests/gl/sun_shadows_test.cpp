@@ -94,7 +94,7 @@ Comparison compare_methods(const DataSet& d, const Camera& cam, const glm::vec3&
     c.iou = either ? double(both) / double(either) : 1.0;
     c.shadowed_share = terrain ? double(shadowed) / double(terrain) : 0.0;
     c.mean_diff = terrain_pixels ? diff / double(terrain_pixels) : 0.0;
-    std::printf("  IoU %.3f, %.1f %% of sunlit terrain pixels shadowed, mean color difference %.2f\n", c.iou,
+    std::printf("  IoU %.4f, %.1f %% of sunlit terrain pixels shadowed, mean color difference %.2f\n", c.iou,
                 100.0 * c.shadowed_share, c.mean_diff);
     return c;
 }
