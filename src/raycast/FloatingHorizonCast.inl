@@ -219,8 +219,9 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
 }
 
 // The state of cast_blocks' columns: set up for a block, then each column
-// takes turns casting one coarse run (cast_run).
-template <std::ptrdiff_t kStride, bool kEvenRows>
+// takes turns casting one coarse run (cast_run). kMask: the terrain has a
+// light mask (FrontFace.h).
+template <std::ptrdiff_t kStride, bool kEvenRows, bool kMask>
 struct BlockCast {
     BlockRay rays[kBlock];
     int live[kBlock]; // the columns still casting, in order
@@ -336,7 +337,7 @@ struct BlockCast {
             gz += sz;
             const std::uint16_t raw = heights[ci];
             const std::uint32_t word = colors[ci];
-            const std::uint32_t col = word & kRgbBits;
+            const std::uint32_t col = kMask ? word & kRgbBits : word;
             if constexpr (kEvenRows) {
                 const SliceGuess& g = guesses[k];
                 const float sigma = float(raw) * g.a + g.b;
@@ -352,7 +353,7 @@ struct BlockCast {
                     out_c[std::ptrdiff_t(q) * kStride] = col;
                     out_s[std::ptrdiff_t(q) * kStride] = std::uint32_t(k);
                 }
-                if (light_changes(prev_word, word) && top > j) [[unlikely]]
+                if (kMask && light_changes(prev_word, word) && top > j) [[unlikely]]
                     paint_near_part(out_c, k, ci, gx - sx, gz - sz, sx, sz, prev_raw, raw, j, top);
                 j = std::max(j, top);
             } else if (const float sigma = float(raw) * ma[k] + mb[k]; sigma > mj) {
@@ -362,11 +363,13 @@ struct BlockCast {
                     out_s[std::ptrdiff_t(j) * kStride] = std::uint32_t(k);
                     mj = rows[++j];
                 } while (sigma > mj);
-                if (light_changes(prev_word, word)) [[unlikely]]
+                if (kMask && light_changes(prev_word, word)) [[unlikely]]
                     paint_near_part(out_c, k, ci, gx - sx, gz - sz, sx, sz, prev_raw, raw, j_from, j);
             }
-            prev_word = word;
-            prev_raw = raw;
+            if constexpr (kMask) {
+                prev_word = word;
+                prev_raw = raw;
+            }
             if (j == nrows) { // the column is full
                 visited -= ke - k - 1;
                 jend[i] = nrows;
@@ -410,7 +413,7 @@ struct BlockCast {
                 prev_known = false;
                 continue;
             }
-            if (!prev_known) {
+            if (kMask && !prev_known) {
                 find_prev(r, k, gx, gz, prev_word, prev_raw);
                 prev_known = true;
             }
@@ -482,13 +485,20 @@ struct BlockCast {
 //   (measured: cast 10-15 % faster on the bench view). The per-slice values
 //   it reads are one record, so that the loop keeps fewer pointers;
 // - the columns of the block take turns, a coarse run each (BlockCast::run).
+// - with a light mask (CastTerrain::other_colors), each column carries its
+//   previous sample for the front faces' light (FrontFace.h); without one the
+//   cast is compiled without it, so the unshadowed frame pays nothing.
 // kStride: row stride of the output; kEvenRows: the rows are evenly spaced in
 // slope (shear) and the output has kPaintRows rows of padding.
 template <std::ptrdiff_t kStride, bool kEvenRows>
 [[gnu::always_inline]] inline long long cast_blocks(const CastTerrain& t, const CastFrame& f, int c0, int c1,
                                                     std::uint32_t* color, std::uint32_t* slice, int* jend,
                                                     std::ptrdiff_t col_stride) {
-    BlockCast<kStride, kEvenRows> block(t, f, c0, c1, color, slice, jend, col_stride);
+    if (t.other_colors) {
+        BlockCast<kStride, kEvenRows, true> block(t, f, c0, c1, color, slice, jend, col_stride);
+        return block.run();
+    }
+    BlockCast<kStride, kEvenRows, false> block(t, f, c0, c1, color, slice, jend, col_stride);
     return block.run();
 }
 
