@@ -77,9 +77,9 @@ struct BlockRay {
 // is done when the top row is painted or no later slice can reach the horizon
 // (SliceSlopes::smax). Color and slice index are stored; depth and fog come
 // from the slice when the column is resolved. Where the light mask changes
-// between the previous slice's sample and this one, the rows below their
-// midpoint take this sample's color under the previous one's light
-// (FrontFace.h). This is the general case (bilinear surface, LOD and near
+// between the previous slice's sample and this one, the rows below the point
+// where the mesh's light changes take this sample's color under the previous
+// one's light (FrontFace.h). This is the general case (bilinear surface, LOD and near
 // refinement); cast_blocks is the papers' case.
 template <bool kBilinear, bool kVarying>
 int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* color, std::uint32_t* slice,
@@ -181,7 +181,7 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
         if (sigma > mj) {
             const std::uint32_t word = (kVarying && level > 0) ? t.level_colors[level][ci] : colors[ci];
             const std::uint32_t col = word & kRgbBits;
-            // The rows below the slope's midpoint, with the previous sample's light.
+            // The rows below where the light changes take the previous sample's light.
             float below = -std::numeric_limits<float>::infinity();
             std::uint32_t near_col = col;
             if (other && level == 0 && prev_level == 0 && light_changes(colors[prev_ci], word)) [[unlikely]] {

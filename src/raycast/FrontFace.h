@@ -18,10 +18,9 @@
 // (LightMask::other_colors); the rows above it, sample k's own. That point is
 // where the column's ray passes from sample k - 1's cell (the ground nearest
 // to it) into the cells in sample k's state (cell_crossing), at the height
-// of the slope there:
-// halfway between the two samples' heights on the blocks surface (the cells
-// meet halfway between the samples), interpolated along the ray on the
-// bilinear one. Only the light moves: a block keeps its own albedo and
+// of the slope there: halfway between the two samples' heights on the blocks
+// surface (the cells meet halfway between the samples), interpolated along
+// the ray on the bilinear one. Only the light moves: a block keeps its own albedo and
 // normal, so the unshadowed and the baked pictures are unchanged. Sample
 // k - 1 is the previous slice's sample along the column whether it painted or
 // not (the slope's near half may show above a hidden sample); the first slice
