@@ -71,7 +71,7 @@ int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int 
         if (h > z) {
             const std::uint32_t word = s.terrain.colors[ci];
             std::uint32_t col = word & kRgbBits, near_col = col;
-            // Rows whose ray slope is below the midpoint's take near_col.
+            // Rows whose ray slope is below where the light changes take near_col.
             double below = -std::numeric_limits<double>::infinity();
             if (other && k > k0 && light_changes(s.terrain.colors[prev_ci], word)) {
                 const std::uint32_t* colors = s.terrain.colors.data();
