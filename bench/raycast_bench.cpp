@@ -10,6 +10,7 @@
 // (raycast/ImageryTexels.h): their ratio to BM_Voxel* is the imagery's cost.
 #include "core/DemoIsland.h"
 #include "core/ImageryPyramid.h"
+#include "core/SunLight.h"
 #include "raycast/Atmosphere.h"
 #include "raycast/FloatingHorizon.h"
 #include "raycast/FloatingHorizonLiteral.h"
@@ -76,8 +77,10 @@ const ImageryPyramid& island_imagery() {
 
 // atmosphere: the aerial perspective (Environment::atmosphere) instead of fog.
 // imagery: draped over the painted samples (FloatingHorizon::set_imagery).
+// shadows: sun-lit colors with the terrain's shadows of a low sun and their
+// light mask (front faces change light where the mesh does: FrontFace.h).
 void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool atmosphere = false,
-              bool imagery = false) {
+              bool imagery = false, bool shadows = false) {
     const DataSet& ds = island();
     const int threads = int(state.range(0));
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
@@ -86,6 +89,12 @@ void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool
     const Camera cam = bench_camera(ds, proj);
     Environment env = ds.environment;
     env.atmosphere = atmosphere;
+    TerrainLighting lighting(ds.terrain);
+    if (shadows) {
+        env.sun_dir = sun_direction(250.0, 12.0);
+        env.shadows = true;
+        fh.set_colors(lighting.colors(env), lighting.light_mask());
+    }
     ColorImage color;
     DepthImage depth;
     RaycastStats stats;
@@ -103,6 +112,7 @@ void BM_Voxel(benchmark::State& s) { run_fast(s, Projection::Shear, {}); }
 void BM_VoxelAtmosphere(benchmark::State& s) { run_fast(s, Projection::Shear, {}, true); }
 void BM_VoxelImagery(benchmark::State& s) { run_fast(s, Projection::Shear, {}, false, true); }
 void BM_VoxelImageryAtmosphere(benchmark::State& s) { run_fast(s, Projection::Shear, {}, true, true); }
+void BM_VoxelShadows(benchmark::State& s) { run_fast(s, Projection::Shear, {}, false, false, true); }
 
 // The aerial perspective's per-frame tables for an eye that climbs every
 // frame, as in a flight (the direction and sky tables are rebuilt).
@@ -164,6 +174,7 @@ BENCHMARK(BM_Voxel)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime(
 BENCHMARK(BM_VoxelAtmosphere)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelImagery)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelImageryAtmosphere)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelShadows)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AerialTables)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelNoSkip)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

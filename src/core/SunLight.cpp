@@ -31,7 +31,7 @@ std::uint8_t channel(std::uint8_t albedo, float light) {
 
 namespace {
 void light_samples(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
-                   const std::uint8_t* mask, std::vector<Rgb8>& out, LightOutput output);
+                   const std::uint8_t* mask, std::vector<Rgb8>& out, std::vector<Rgb8>* other, LightOutput output);
 } // namespace
 
 glm::vec3 sun_direction(double azimuth_deg, double elevation_deg) {
@@ -73,12 +73,18 @@ glm::vec3 sample_light(const Environment& env, const glm::vec3& n, bool lit) {
 
 void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
                   std::vector<Rgb8>& out, LightOutput output) {
-    light_samples(t, normals, env, shadow, nullptr, out, output);
+    light_samples(t, normals, env, shadow, nullptr, out, nullptr, output);
 }
 
 void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env,
                   const std::vector<std::uint8_t>& shadow_mask, std::vector<Rgb8>& out, LightOutput output) {
-    light_samples(t, normals, env, nullptr, shadow_mask.data(), out, output);
+    light_samples(t, normals, env, nullptr, shadow_mask.data(), out, nullptr, output);
+}
+
+void light_colors(const Terrain& t, const PackedNormals& normals, const Environment& env,
+                  const std::vector<std::uint8_t>& shadow_mask, std::vector<Rgb8>& out, std::vector<Rgb8>& other,
+                  LightOutput output) {
+    light_samples(t, normals, env, nullptr, shadow_mask.data(), out, &other, output);
 }
 
 namespace {
@@ -98,7 +104,26 @@ struct LightRow {
     float* L = nullptr;  // cols
     float* LL = nullptr; // 3 cols
     std::uint8_t* dst = nullptr;
+    std::uint8_t* other = nullptr; // with `mask`: the colors with the mask flipped (null: none)
 };
+
+// The light per channel of the Lambert terms L, then Rgb8 as bytes into dst:
+// plain loops, which vectorize.
+[[gnu::always_inline]] inline void light_bytes(const LightRow& r, const float* L, std::uint8_t* dst) {
+    static_assert(sizeof(Rgb8) == 3);
+    const int cols = r.cols;
+    const std::size_t count = 3 * std::size_t(cols);
+    float* LL = r.LL;
+    for (int col = 0; col < cols; ++col) {
+        LL[3 * col] = r.amb[0] + r.sun_rgb[0] * L[col];
+        LL[3 * col + 1] = r.amb[1] + r.sun_rgb[1] * L[col];
+        LL[3 * col + 2] = r.amb[2] + r.sun_rgb[2] * L[col];
+    }
+    if (r.light_only)
+        for (std::size_t i = 0; i < count; ++i) dst[i] = channel(128, LL[i]);
+    else
+        for (std::size_t i = 0; i < count; ++i) dst[i] = channel(r.albedo[i], LL[i]);
+}
 
 // Passes over the row, each without branches, so that each vectorizes.
 [[gnu::always_inline]] inline void light_row_body(const LightRow& r) {
@@ -109,24 +134,17 @@ struct LightRow {
         const std::uint32_t p = r.n[col];
         L[col] = std::max(PackedNormals::x_of(p) * l.x + PackedNormals::y_of(p) * l.y + PackedNormals::z_of(p) * l.z, 0.0f);
     }
+    if (r.other) { // the flipped light first, while L holds the sun's term unmasked
+        float* F = L + cols;
+        for (int col = 0; col < cols; ++col) F[col] = r.mask[col] ? L[col] : 0.0f;
+        light_bytes(r, F, r.other);
+    }
     if (r.ceiling) {
         for (int col = 0; col < cols; ++col) L[col] = r.vs * float(r.raw[col]) + r.y0 < r.ceiling[col] ? 0.0f : L[col];
     } else if (r.mask) {
         for (int col = 0; col < cols; ++col) L[col] = r.mask[col] ? 0.0f : L[col];
     }
-    // The light per channel, then Rgb8 as bytes: plain loops, which vectorize.
-    static_assert(sizeof(Rgb8) == 3);
-    const std::size_t count = 3 * std::size_t(cols);
-    float* LL = r.LL;
-    for (int col = 0; col < cols; ++col) {
-        LL[3 * col] = r.amb[0] + r.sun_rgb[0] * L[col];
-        LL[3 * col + 1] = r.amb[1] + r.sun_rgb[1] * L[col];
-        LL[3 * col + 2] = r.amb[2] + r.sun_rgb[2] * L[col];
-    }
-    if (r.light_only)
-        for (std::size_t i = 0; i < count; ++i) r.dst[i] = channel(128, LL[i]);
-    else
-        for (std::size_t i = 0; i < count; ++i) r.dst[i] = channel(r.albedo[i], LL[i]);
+    light_bytes(r, L, r.dst);
 }
 
 void light_row_portable(const LightRow& r) { light_row_body(r); }
@@ -139,9 +157,10 @@ __attribute__((target("avx2"))) void light_row_avx2(const LightRow& r) { light_r
 #endif
 
 void light_samples(const Terrain& t, const PackedNormals& normals, const Environment& env, const ShadowCeiling* shadow,
-                   const std::uint8_t* mask, std::vector<Rgb8>& out, LightOutput output) {
+                   const std::uint8_t* mask, std::vector<Rgb8>& out, std::vector<Rgb8>* other, LightOutput output) {
     const bool light_only = output == LightOutput::Light;
     out.resize(t.colors().size());
+    if (other) other->resize(t.colors().size());
     const glm::vec3 sun = unit_sun(env);
     const bool day = sun.y > 0;
     // N . L with N in steps of 1 / kScale: the packed integers times L / kScale.
@@ -162,7 +181,7 @@ void light_samples(const Terrain& t, const PackedNormals& normals, const Environ
     tbb::parallel_for(0, t.rows(), [&](int row) {
         const std::size_t i0 = t.index(row, 0);
         thread_local std::vector<float> lambert, light;
-        lambert.resize(std::size_t(cols));
+        lambert.resize(2 * std::size_t(cols)); // the second half: the flipped light (LightRow::other)
         light.resize(3 * std::size_t(cols));
         LightRow q = r;
         q.n = normals.packed.data() + i0;
@@ -173,6 +192,7 @@ void light_samples(const Terrain& t, const PackedNormals& normals, const Environ
         q.L = lambert.data();
         q.LL = light.data();
         q.dst = reinterpret_cast<std::uint8_t*>(out.data() + i0);
+        q.other = other && mask ? reinterpret_cast<std::uint8_t*>(other->data() + i0) : nullptr;
 #if OVERFLIGHT_LIGHT_AVX2
         if (avx2) {
             light_row_avx2(q);
@@ -191,6 +211,7 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     lit_for_ = env;
     ++version_;
     baked_ = lighting_is_baked(env);
+    masked_ = false;
     if (baked_ && output_ == LightOutput::Light) {
         colors_.assign(terrain_.colors().size(), Rgb8{128, 128, 128});
         baked_ = false; // the light of 1 is what to paint
@@ -203,11 +224,17 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
         if (!shadow_valid_ || shadow_for_ != sun) sweep_shadow_mask(terrain_, sun, shadow_);
         shadow_valid_ = true;
         shadow_for_ = sun;
-        light_colors(terrain_, normals_, env, shadow_, colors_, output_);
+        light_colors(terrain_, normals_, env, shadow_, colors_, other_colors_, output_);
+        masked_ = true;
     } else {
         light_colors(terrain_, normals_, env, nullptr, colors_, output_);
     }
     return &colors_;
+}
+
+LightMask TerrainLighting::light_mask() const {
+    if (!masked_) return {};
+    return {&shadow_, &other_colors_};
 }
 
 } // namespace overflight

@@ -71,6 +71,22 @@ void light_colors(const Terrain& terrain, const PackedNormals& normals, const En
                   const std::vector<std::uint8_t>& shadow_mask, std::vector<Rgb8>& out,
                   LightOutput output = LightOutput::Colors);
 
+// The terrain's shadow as a renderer that paints one color per sample needs
+// it to end a shadow where the mesh ends it (halfway between a shadowed and a
+// lit sample) rather than at a sample: the light mask (1 = shadowed) and each
+// sample's color under the other light state (lit where the mask shadows it,
+// shadowed where it does not), both one per sample. Null: nothing shadowed.
+struct LightMask {
+    const std::vector<std::uint8_t>* shadowed = nullptr;
+    const std::vector<Rgb8>* other_colors = nullptr;
+};
+
+// light_colors for the mask, and into `other` each sample's color with its
+// light state flipped (LightMask::other_colors): one pass for both.
+void light_colors(const Terrain& terrain, const PackedNormals& normals, const Environment& env,
+                  const std::vector<std::uint8_t>& shadow_mask, std::vector<Rgb8>& out, std::vector<Rgb8>& other,
+                  LightOutput output = LightOutput::Colors);
+
 // The lit colors of one terrain for the environment of the frame, recomputed
 // only when the sun, its colors or Environment::shadows change (the horizon
 // sweep only when the sun's direction does), so that a still sun costs a
@@ -88,6 +104,9 @@ public:
     const std::vector<Rgb8>* colors(const Environment& env);
     // Changes each time colors() returns different colors.
     std::uint64_t version() const { return version_; }
+    // The light mask behind the last colors() (empty when Environment::shadows
+    // is off or lighting is baked). Valid until the next colors().
+    LightMask light_mask() const;
 
 private:
     const Terrain& terrain_;
@@ -99,6 +118,8 @@ private:
     bool shadow_valid_ = false;
     PackedNormals normals_; // packed on the first lit call
     std::vector<Rgb8> colors_;
+    std::vector<Rgb8> other_colors_; // LightMask::other_colors, with shadows
+    bool masked_ = false;            // colors_ are shadowed by shadow_
     std::uint64_t version_ = 0;
 };
 

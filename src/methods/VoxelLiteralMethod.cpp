@@ -33,7 +33,7 @@ public:
         if (lighting_.version() != before) stats.add_step_since("light", t0);
         RaycastStats s;
         render_floating_horizon_literal(terrain_, view.environment, view.camera, options_.surface, color_, depth_, &s,
-                                        colors, terrain_.imagery());
+                                        colors, terrain_.imagery(), lighting_.light_mask());
         stats.steps.push_back({"raycast", s.ms_total});
         stats.raycast = s;
         if (view.environment.water) {

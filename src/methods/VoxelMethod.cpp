@@ -33,7 +33,7 @@ public:
         const auto t0 = std::chrono::steady_clock::now();
         const std::vector<Rgb8>* colors = lighting_.colors(view.environment);
         if (lighting_.version() != painted_) {
-            caster_.set_colors(colors);
+            caster_.set_colors(colors, lighting_.light_mask());
             painted_ = lighting_.version();
             stats.add_step_since("light", t0);
         }

@@ -11,7 +11,9 @@ FloatingHorizon::FloatingHorizon(const Terrain& terrain) : state_(std::make_uniq
 
 FloatingHorizon::~FloatingHorizon() = default;
 
-void FloatingHorizon::set_colors(const std::vector<Rgb8>* colors) { state_->terrain.set_colors(colors); }
+void FloatingHorizon::set_colors(const std::vector<Rgb8>* colors, const LightMask& mask) {
+    state_->terrain.set_colors(colors, mask);
+}
 
 void FloatingHorizon::set_imagery(const ImageryPyramid* imagery) { state_->imagery.bind(imagery); }
 

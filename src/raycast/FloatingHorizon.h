@@ -41,6 +41,7 @@
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
+#include "core/SunLight.h"
 #include "core/Terrain.h"
 #include "raycast/RaycastOptions.h"
 
@@ -78,8 +79,11 @@ public:
     // Paints `colors` (one per sample, e.g. sun-lit: core/SunLight.h; they
     // must outlive their use) from the next render on instead of the
     // terrain's own colors; null: the terrain's. Repacks them (linear in the
-    // samples), so call it only when they change.
-    void set_colors(const std::vector<Rgb8>* colors);
+    // samples), so call it only when they change. With `mask`, the light
+    // mask the colors were lit with (it must outlive its use too), a shadow
+    // ends on a block's front face halfway between a shadowed and a lit
+    // sample, as on the mesh (FrontFace.h), in every camera model.
+    void set_colors(const std::vector<Rgb8>* colors, const LightMask& mask = {});
     // Imagery finer than the samples (null: none, the default): from the next
     // render on, the painted colors are taken as each sample's light (128 is
     // 1, core/SunLight.h LightOutput::Light) and multiplied by the imagery's

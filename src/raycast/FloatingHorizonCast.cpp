@@ -17,12 +17,18 @@ CastTerrain::CastTerrain(const Terrain& t)
     level_cols[0] = t.cols();
 }
 
-void CastTerrain::set_colors(const std::vector<Rgb8>* sample_colors) {
+void CastTerrain::set_colors(const std::vector<Rgb8>* sample_colors, const LightMask& mask) {
     source_colors = sample_colors;
     const std::vector<Rgb8>& from = sample_colors ? *sample_colors : terrain.colors();
     colors.resize(from.size());
+    const std::uint8_t* shadowed = mask.shadowed ? mask.shadowed->data() : nullptr;
+    other_colors = shadowed ? mask.other_colors->data() : nullptr;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 1 << 16), [&](const auto& r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i) colors[i] = pack_rgb(from[i]);
+        if (shadowed)
+            for (std::size_t i = r.begin(); i < r.end(); ++i)
+                colors[i] = pack_rgb(from[i]) | (shadowed[i] ? kShadowedBit : 0u);
+        else
+            for (std::size_t i = r.begin(); i < r.end(); ++i) colors[i] = pack_rgb(from[i]);
     });
     level_colors[0] = colors.data();
     lod_pyramid.reset();

@@ -9,6 +9,7 @@
 // One body (FloatingHorizonCast.inl) compiled once per instruction set
 // (CastKernel): FloatingHorizonCast.cpp for the baseline, which also picks
 // the kernel at run time, FloatingHorizonCastX86_64_v3.cpp for x86-64-v3.
+#include "core/SunLight.h"
 #include "core/Terrain.h"
 #include "raycast/FloatingHorizonTables.h"
 #include "raycast/HeightPyramid.h"
@@ -43,13 +44,18 @@ struct CastTerrain {
     int lod_levels();
     // Paints `sample_colors` (one per sample, e.g. sun-lit; null: the
     // terrain's own) from now on: repacks level 0, drops the LOD pyramid.
-    void set_colors(const std::vector<Rgb8>* sample_colors);
+    // With `mask` (the light mask the colors were lit with), a front face's
+    // light changes halfway between a shadowed and a lit sample
+    // (FrontFace.h): the mask goes into the packed colors' top byte and
+    // mask.other_colors is read where it does (it must outlive its use).
+    void set_colors(const std::vector<Rgb8>* sample_colors, const LightMask& mask = {});
 
     const Terrain& terrain;
     float max_height = 0; // world, over all samples
     float min_height = 0; // world, over all samples (the aerial perspective's height range)
     const std::vector<Rgb8>* source_colors = nullptr; // what `colors` packs; null: terrain.colors()
-    std::vector<std::uint32_t> colors;
+    std::vector<std::uint32_t> colors; // 0x00BBGGRR, kShadowedBit (FrontFace.h) where the mask shadows
+    const Rgb8* other_colors = nullptr; // LightMask::other_colors; null: no mask
     HeightPyramid max_pyramid; // heights only: run skipping
     std::unique_ptr<HeightPyramid> lod_pyramid;
     const std::uint16_t* level_heights[kMaxLevels] = {};

@@ -10,12 +10,14 @@
 // pixels until the horizon passes it) with the slices of sec. 5.2.
 #include "raycast/FloatingHorizonCast.h"
 
+#include "raycast/FrontFace.h"
 #include "raycast/RowSearch.h"
 #include "raycast/ShearResolve.h"
 #include "raycast/SliceRunBound.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace overflight {
@@ -54,7 +56,13 @@ struct BlockRay {
     std::int64_t gx = 0, gz = 0, sx = 0, sz = 0; // position of slice k and step, 32.32, offset by half a cell
     SliceRunBound coarse, fine;
     int k = 0, k1 = 0; // next slice (the start of a coarse run), end of the column
+    int k_first = 0;   // the column's first slice
     int j = 0;         // horizon row (its slope is rows.m[j])
+    // The previous slice's sample (FrontFace.h): its color word and raw
+    // height, known unless a run was skipped since (cast_slices reads it then).
+    std::uint32_t prev_word = 0;
+    std::uint16_t prev_raw = 0;
+    bool prev_known = false;
     // The last fine run painted: the next one most likely paints too (near
     // the eye every slice does), so it is cast without testing (measured: 5 %
     // faster).
@@ -68,9 +76,11 @@ struct BlockRay {
 // pixel moves the horizon up one row (eq. 2); rows only climb, so the column
 // is done when the top row is painted or no later slice can reach the horizon
 // (SliceSlopes::smax). Color and slice index are stored; depth and fog come
-// from the slice when the column is resolved. This is the general case
-// (bilinear surface, LOD and near refinement); cast_blocks is the papers'
-// case.
+// from the slice when the column is resolved. Where the light mask changes
+// between the previous slice's sample and this one, the rows below the point
+// where the mesh's light changes take this sample's color under the previous
+// one's light (FrontFace.h). This is the general case (bilinear surface, LOD and near
+// refinement); cast_blocks is the papers' case.
 template <bool kBilinear, bool kVarying>
 int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* color, std::uint32_t* slice,
                 std::ptrdiff_t stride, long long& visited) {
@@ -86,6 +96,13 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
     const float* rows = f.rows.m.data();
     const int nrows = f.rows.count;
     const double eye_gx = f.view.eye_gx, eye_gz = f.view.eye_gz;
+    const Rgb8* other = t.other_colors;
+    // The previous slice's sample (FrontFace.h): its position, the index of
+    // its color, its height and LOD level (-1: none, at the column's first slice).
+    double prev_x = 0, prev_z = 0;
+    std::size_t prev_ci = 0;
+    float prev_h = 0;
+    int prev_level = -1;
     int j = 0;
     float mj = rows[0];
     int k = k0;
@@ -104,6 +121,29 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
                             std::llround(sz * kFixedOne), Footprint::Bilinear);
     int next_test = k0, j_at_test = 0;
     long long skipped = 0;
+    // The sample at slice k's position (gx, gz) on `level`: its height and the
+    // index of its color.
+    const auto sample = [&](double x, double z, int level, float& h) -> std::size_t {
+        const int ix = int(x + 0.5), iz = int(z + 0.5);
+        if (kVarying && level > 0) {
+            const std::size_t i = std::size_t(iz >> level) * std::size_t(t.level_cols[level]) + std::size_t(ix >> level);
+            h = float(t.level_heights[level][i]);
+            return i;
+        }
+        if constexpr (kBilinear) {
+            const int c0 = std::min(std::max(int(x), 0), cols - 2);
+            const int r0 = std::min(std::max(int(z), 0), t.terrain.rows() - 2);
+            const float tx = float(x - c0), tz = float(z - r0);
+            const std::uint16_t* p = heights + std::size_t(r0) * std::size_t(cols) + std::size_t(c0);
+            const float top = float(p[0]) + (float(p[1]) - float(p[0])) * tx;
+            const float bottom = float(p[cols]) + (float(p[cols + 1]) - float(p[cols])) * tx;
+            h = top + (bottom - top) * tz;
+            return std::size_t(iz) * std::size_t(cols) + std::size_t(ix);
+        }
+        const std::size_t i = std::size_t(iz) * std::size_t(cols) + std::size_t(ix);
+        h = float(heights[i]);
+        return i;
+    };
     for (; k < k1; ++k) {
         if (smax[k] <= mj) break;
         if (kSkip && k == next_test) {
@@ -113,10 +153,17 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
             if (!hot && run.usable() && k + kRunFine <= k1 &&
                 run_below(ma, mb, k, kRunFine,
                           float(run.max_height(std::llround(gx * kFixedOne), std::llround(gz * kFixedOne))), mj)) {
+                double last_x = gx, last_z = gz; // the run's last sample: the next one's previous
                 for (int q = 0; q < kRunFine; ++q) {
+                    last_x = gx;
+                    last_z = gz;
                     gx += sx;
                     gz += sz;
                 }
+                if (other) prev_ci = sample(last_x, last_z, 0, prev_h);
+                prev_x = last_x;
+                prev_z = last_z;
+                prev_level = 0;
                 k += kRunFine - 1;
                 skipped += kRunFine;
                 continue;
@@ -126,32 +173,29 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
             gx = eye_gx + slice_d[std::size_t(k)] * ux;
             gz = eye_gz + slice_d[std::size_t(k)] * uz;
         }
-        const int ix = int(gx + 0.5), iz = int(gz + 0.5);
-        float h;
-        std::size_t ci;
         int level = 0;
         if constexpr (kVarying) level = f.slices.level[std::size_t(k)];
-        if (kVarying && level > 0) {
-            ci = std::size_t(iz >> level) * std::size_t(t.level_cols[level]) + std::size_t(ix >> level);
-            h = float(t.level_heights[level][ci]);
-        } else if constexpr (kBilinear) {
-            const int c0 = std::min(std::max(int(gx), 0), cols - 2);
-            const int r0 = std::min(std::max(int(gz), 0), t.terrain.rows() - 2);
-            const float tx = float(gx - c0), tz = float(gz - r0);
-            const std::uint16_t* p = heights + std::size_t(r0) * std::size_t(cols) + std::size_t(c0);
-            const float top = float(p[0]) + (float(p[1]) - float(p[0])) * tx;
-            const float bottom = float(p[cols]) + (float(p[cols + 1]) - float(p[cols])) * tx;
-            h = top + (bottom - top) * tz;
-            ci = std::size_t(iz) * std::size_t(cols) + std::size_t(ix);
-        } else {
-            ci = std::size_t(iz) * std::size_t(cols) + std::size_t(ix);
-            h = float(heights[ci]);
-        }
+        float h;
+        const std::size_t ci = sample(gx, gz, level, h);
         const float sigma = h * ma[k] + mb[k];
         if (sigma > mj) {
-            const std::uint32_t col = (kVarying && level > 0) ? t.level_colors[level][ci] : colors[ci];
+            const std::uint32_t word = (kVarying && level > 0) ? t.level_colors[level][ci] : colors[ci];
+            const std::uint32_t col = word & kRgbBits;
+            // The rows below where the light changes take the previous sample's light.
+            float below = -std::numeric_limits<float>::infinity();
+            std::uint32_t near_col = col;
+            if (other && level == 0 && prev_level == 0 && light_changes(colors[prev_ci], word)) [[unlikely]] {
+                const double cross = cell_crossing(prev_x + 0.5, prev_z + 0.5, gx + 0.5, gz + 0.5,
+                                               (word & kShadowedBit) == 0, [&](int cell_col, int cell_row) {
+                                                   return (colors[std::size_t(cell_row) * std::size_t(cols) + std::size_t(cell_col)] &
+                                                           kShadowedBit) != 0;
+                                               });
+                below = change_slope(f.slopes, slice_d[std::size_t(k) - 1], slice_d[std::size_t(k)], cross, prev_h, h,
+                                     kBilinear);
+                near_col = pack_rgb(other[ci]);
+            }
             do { // paint, move the horizon up one pixel (lines 10-14)
-                color[std::ptrdiff_t(j) * stride] = col;
+                color[std::ptrdiff_t(j) * stride] = mj < below ? near_col : col;
                 slice[std::ptrdiff_t(j) * stride] = std::uint32_t(k);
                 mj = rows[++j];
             } while (sigma > mj);
@@ -160,6 +204,11 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
                 break;
             }
         }
+        prev_x = gx;
+        prev_z = gz;
+        prev_ci = ci;
+        prev_h = h;
+        prev_level = level;
         if constexpr (!kVarying) {
             gx += sx;
             gz += sz;
@@ -170,8 +219,9 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
 }
 
 // The state of cast_blocks' columns: set up for a block, then each column
-// takes turns casting one coarse run (cast_run).
-template <std::ptrdiff_t kStride, bool kEvenRows>
+// takes turns casting one coarse run (cast_run). kMask: the terrain has a
+// light mask (FrontFace.h).
+template <std::ptrdiff_t kStride, bool kEvenRows, bool kMask>
 struct BlockCast {
     BlockRay rays[kBlock];
     int live[kBlock]; // the columns still casting, in order
@@ -192,6 +242,9 @@ struct BlockCast {
     const int nrows;
     const RowSearch search;
     const SliceGuess* guesses;
+    const Rgb8* other; // CastTerrain::other_colors
+    const SliceSlopes& slopes;
+    const double* slice_d;
 
     [[gnu::always_inline]] BlockCast(const CastTerrain& t, const CastFrame& frame, int c0, int c1,
                                      std::uint32_t* out_color, std::uint32_t* out_slice, int* out_jend,
@@ -200,7 +253,8 @@ struct BlockCast {
           cols(std::size_t(t.terrain.cols())), heights(t.terrain.heights().data()), colors(t.colors.data()),
           ma(frame.slopes.a.data()), mb(frame.slopes.b.data()), smax(frame.slopes.smax.data()),
           rows(frame.rows.m.data()), nrows(frame.rows.count), search(rows, kEvenRows ? nrows : 0),
-          guesses(frame.guesses.data()) {
+          guesses(frame.guesses.data()), other(t.other_colors), slopes(frame.slopes),
+          slice_d(frame.slices.d.data()) {
         const std::vector<double>& slice_d = frame.slices.d;
         const Columns& cc = frame.columns;
         const double step = slice_d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
@@ -218,9 +272,11 @@ struct BlockCast {
             r.coarse = SliceRunBound(t.max_pyramid, frame.skip_runs ? kRunCoarse : 0, r.sx, r.sz);
             r.fine = SliceRunBound(t.max_pyramid, frame.skip_runs ? kRunFine : 0, r.sx, r.sz);
             r.k = k0;
+            r.k_first = k0;
             r.k1 = k1;
             r.j = 0;
             r.hot = false;
+            r.prev_known = false;
             live[n_live++] = c - c0;
         }
     }
@@ -230,11 +286,48 @@ struct BlockCast {
         return run_below(ma, mb, k, run.run(), float(run.max_height(x, z)), m);
     }
 
+    // The previous slice's sample of column i before slice k at (gx, gz)
+    // after a skipped run (FrontFace.h): read back when there is a light
+    // mask; the column's first slice has none (itself stands in).
+    [[gnu::always_inline]] void find_prev(const BlockRay& r, int k, std::int64_t gx, std::int64_t gz,
+                                          std::uint32_t& prev_word, std::uint16_t& prev_raw) const {
+        prev_word = 0;
+        if (!other) return;
+        if (k > r.k_first) {
+            gx -= r.sx;
+            gz -= r.sz;
+        }
+        const std::size_t ci = std::size_t(gz >> 32) * cols + std::size_t(gx >> 32);
+        prev_word = colors[ci];
+        prev_raw = heights[ci];
+    }
+
+    // Sample k (at (x, z), one step (sx, sz) after the previous sample; color
+    // index ci, raw height raw) paints rows [j, top) of column out_c after the
+    // sample of raw height prev_raw: where their light differs, repaints the
+    // rows below the point where the light changes with this sample's color
+    // under the other light (FrontFace.h). Rare (shadow edges), so out of the
+    // loop's way.
+    [[gnu::noinline]] void paint_near_part(std::uint32_t* out_c, int k, std::size_t ci, std::int64_t x,
+                                           std::int64_t z, std::int64_t sx, std::int64_t sz, std::uint16_t prev_raw,
+                                           std::uint16_t raw, int j, int top) const {
+        constexpr double kCell = 1.0 / kFixedOne;
+        const double cross = cell_crossing(double(x - sx) * kCell, double(z - sz) * kCell, double(x) * kCell,
+                                       double(z) * kCell, (colors[ci] & kShadowedBit) == 0, [&](int cell_col, int cell_row) {
+                                           return (colors[std::size_t(cell_row) * cols + std::size_t(cell_col)] & kShadowedBit) != 0;
+                                       });
+        const float m = change_slope(slopes, slice_d[k - 1], slice_d[k], cross, prev_raw, raw, false);
+        const int end = std::min(top, search.first_not_below(m));
+        const std::uint32_t near_col = pack_rgb(other[ci]);
+        for (int q = j; q < end; ++q) out_c[std::ptrdiff_t(q) * kStride] = near_col;
+    }
+
     // Lines 5-16 of Algorithm 1 for the slices [k, ke) of column i, from
-    // horizon row j at position (gx, gz). False when the column is full
-    // (jend written).
+    // horizon row j at position (gx, gz), after the sample of prev_word,
+    // prev_raw. False when the column is full (jend written).
     [[gnu::always_inline]] bool cast_slices(int i, int& k, int ke, int& j, float& mj, std::int64_t& gx,
-                                            std::int64_t& gz, std::int64_t sx, std::int64_t sz) {
+                                            std::int64_t& gz, std::int64_t sx, std::int64_t sz,
+                                            std::uint32_t& prev_word, std::uint16_t& prev_raw) {
         std::uint32_t* const out_c = color + std::ptrdiff_t(i) * col_stride;
         std::uint32_t* const out_s = slice + std::ptrdiff_t(i) * col_stride;
         visited += ke - k;
@@ -243,12 +336,13 @@ struct BlockCast {
             gx += sx;
             gz += sz;
             const std::uint16_t raw = heights[ci];
+            const std::uint32_t word = colors[ci];
+            const std::uint32_t col = kMask ? word & kRgbBits : word;
             if constexpr (kEvenRows) {
                 const SliceGuess& g = guesses[k];
                 const float sigma = float(raw) * g.a + g.b;
                 const std::int64_t guess = (std::int64_t(raw) * g.ga + g.gb) >> kGuessBits;
                 const int top = search.first_not_below(sigma, int(std::clamp<std::int64_t>(guess, 0, nrows)));
-                const std::uint32_t col = colors[ci];
                 std::uint32_t* oc = out_c + std::ptrdiff_t(j) * kStride;
                 std::uint32_t* os = out_s + std::ptrdiff_t(j) * kStride;
                 for (int q = 0; q < kPaintRows; ++q) {
@@ -259,14 +353,22 @@ struct BlockCast {
                     out_c[std::ptrdiff_t(q) * kStride] = col;
                     out_s[std::ptrdiff_t(q) * kStride] = std::uint32_t(k);
                 }
+                if (kMask && light_changes(prev_word, word) && top > j) [[unlikely]]
+                    paint_near_part(out_c, k, ci, gx - sx, gz - sz, sx, sz, prev_raw, raw, j, top);
                 j = std::max(j, top);
             } else if (const float sigma = float(raw) * ma[k] + mb[k]; sigma > mj) {
-                const std::uint32_t col = colors[ci];
+                const int j_from = j;
                 do { // paint, move the horizon up one pixel (lines 10-14)
                     out_c[std::ptrdiff_t(j) * kStride] = col;
                     out_s[std::ptrdiff_t(j) * kStride] = std::uint32_t(k);
                     mj = rows[++j];
                 } while (sigma > mj);
+                if (kMask && light_changes(prev_word, word)) [[unlikely]]
+                    paint_near_part(out_c, k, ci, gx - sx, gz - sz, sx, sz, prev_raw, raw, j_from, j);
+            }
+            if constexpr (kMask) {
+                prev_word = word;
+                prev_raw = raw;
             }
             if (j == nrows) { // the column is full
                 visited -= ke - k - 1;
@@ -295,18 +397,29 @@ struct BlockCast {
             r.k = k + kRunCoarse;
             r.gx = gx + kRunCoarse * sx;
             r.gz = gz + kRunCoarse * sz;
+            r.prev_known = false;
             return true;
         }
         const int kc = std::min(k + kRunCoarse, r.k1);
+        // Locals, so that the cast keeps them in registers.
+        bool prev_known = r.prev_known;
+        std::uint32_t prev_word = r.prev_word;
+        std::uint16_t prev_raw = r.prev_raw;
         while (k < kc) {
             if (!hot && r.fine.usable() && k + kRunFine <= kc && below(r.fine, k, gx, gz, mj)) {
                 k += kRunFine;
                 gx += kRunFine * sx;
                 gz += kRunFine * sz;
+                prev_known = false;
                 continue;
             }
+            if (kMask && !prev_known) {
+                find_prev(r, k, gx, gz, prev_word, prev_raw);
+                prev_known = true;
+            }
             const int j_before = j;
-            if (!cast_slices(i, k, std::min(k + kRunFine, kc), j, mj, gx, gz, sx, sz)) return false;
+            if (!cast_slices(i, k, std::min(k + kRunFine, kc), j, mj, gx, gz, sx, sz, prev_word, prev_raw))
+                return false;
             mj = rows[j];
             hot = j != j_before;
         }
@@ -315,6 +428,9 @@ struct BlockCast {
         r.k = k;
         r.j = j;
         r.hot = hot;
+        r.prev_known = prev_known;
+        r.prev_word = prev_word;
+        r.prev_raw = prev_raw;
         return true;
     }
 
@@ -369,13 +485,20 @@ struct BlockCast {
 //   (measured: cast 10-15 % faster on the bench view). The per-slice values
 //   it reads are one record, so that the loop keeps fewer pointers;
 // - the columns of the block take turns, a coarse run each (BlockCast::run).
+// - with a light mask (CastTerrain::other_colors), each column carries its
+//   previous sample for the front faces' light (FrontFace.h); without one the
+//   cast is compiled without it, so the unshadowed frame pays nothing.
 // kStride: row stride of the output; kEvenRows: the rows are evenly spaced in
 // slope (shear) and the output has kPaintRows rows of padding.
 template <std::ptrdiff_t kStride, bool kEvenRows>
 [[gnu::always_inline]] inline long long cast_blocks(const CastTerrain& t, const CastFrame& f, int c0, int c1,
                                                     std::uint32_t* color, std::uint32_t* slice, int* jend,
                                                     std::ptrdiff_t col_stride) {
-    BlockCast<kStride, kEvenRows> block(t, f, c0, c1, color, slice, jend, col_stride);
+    if (t.other_colors) {
+        BlockCast<kStride, kEvenRows, true> block(t, f, c0, c1, color, slice, jend, col_stride);
+        return block.run();
+    }
+    BlockCast<kStride, kEvenRows, false> block(t, f, c0, c1, color, slice, jend, col_stride);
     return block.run();
 }
 

@@ -5,6 +5,7 @@
 #include "core/Error.h"
 #include "raycast/Atmosphere.h"
 #include "raycast/DepthVector.h"
+#include "raycast/FrontFace.h"
 #include "raycast/ImageryTexels.h"
 
 #include <glm/trigonometric.hpp>
@@ -18,7 +19,8 @@ namespace overflight {
 
 void render_floating_horizon_literal(const Terrain& terrain, const Environment& env, const Camera& camera,
                                      SurfaceModel surface, ColorImage& color, DepthImage& depth, RaycastStats* stats,
-                                     const std::vector<Rgb8>* colors, const ImageryPyramid* imagery) {
+                                     const std::vector<Rgb8>* colors, const ImageryPyramid* imagery,
+                                     const LightMask& mask) {
     const auto t0 = std::chrono::steady_clock::now();
     camera.validate();
     if (camera.projection != Projection::Shear)
@@ -51,17 +53,38 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
         double m = pitch / dpk;      // line 3: first horizon (downward slope per unit distance)
         double z = camera.eye.y - (n - hs) * m;
         int i = 0;                   // line 4
+        // The previous slice's sample (its index and height), when it was on the terrain.
+        bool prev_on = false;
+        std::size_t prev_index = 0;
+        double prev_x = 0, prev_y = 0, prev_h = 0;
         while (i < slices && j < H) { // line 5 (a full column ends the loop too)
             const double dist = n + i * hs;
             y += dy; x += dx; z -= hs * m; // line 6
-            if (terrain.contains(float(x), float(y))) {
+            const bool on = terrain.contains(float(x), float(y));
+            if (on) {
                 ++visited;
                 const double h = surface == SurfaceModel::Blocks ? terrain.height_nearest(float(x), float(y))
                                                                  : terrain.height_bilinear(float(x), float(y)); // line 7
+                const int ci = std::lround(y / hs), cj = std::lround(x / hs);
+                const std::size_t index = terrain.index(ci, cj);
                 if (h > z) { // line 8
-                    const int ci = std::lround(y / hs), cj = std::lround(x / hs);
-                    const Rgb8 c = colors ? (*colors)[terrain.index(ci, cj)] : terrain.color(ci, cj); // line 9
+                    const Rgb8 own = colors ? (*colors)[index] : terrain.color(ci, cj); // line 9
+                    // Where the light mask changes from the previous sample,
+                    // rays below the point where the mesh's light changes
+                    // (the ray's crossing from the previous sample's cell into
+                    // this one's, at the slope's height there) show this
+                    // sample under the previous one's light (FrontFace.h).
+                    const bool split = mask.shadowed && prev_on &&
+                                       (*mask.shadowed)[index] != (*mask.shadowed)[prev_index];
+                    const double cross =
+                        split ? cell_crossing(prev_x / hs + 0.5, prev_y / hs + 0.5, x / hs + 0.5, y / hs + 0.5,
+                                              (*mask.shadowed)[prev_index] != 0,
+                                              [&](int cell_col, int cell_row) { return (*mask.shadowed)[terrain.index(cell_row, cell_col)] != 0; })
+                              : 0.5;
+                    const double d_mid = dist - (1.0 - cross) * hs;
+                    const double h_mid = surface == SurfaceModel::Blocks ? 0.5 * (prev_h + h) : prev_h + cross * (h - prev_h);
                     do {
+                        const Rgb8 c = split && camera.eye.y - d_mid * m < h_mid ? (*mask.other_colors)[index] : own;
                         const int row = H - 1 - j;
                         // Fog at the eye distance of this pixel's ray at this slice.
                         const double len = std::sqrt(1.0 + a * a + m * m);
@@ -85,7 +108,12 @@ void render_floating_horizon_literal(const Terrain& terrain, const Environment& 
                         z += dist / dpk; // line 14 (the distance of slice i)
                     } while (h > z && j < H);
                 }
+                prev_index = index;
+                prev_x = x;
+                prev_y = y;
+                prev_h = h;
             }
+            prev_on = on;
             i += 1; // line 16
         }
         for (; j < H; ++j) { // above the last horizon: sky

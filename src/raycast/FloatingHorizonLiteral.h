@@ -18,6 +18,7 @@
 #include "core/DataSet.h"
 #include "core/Image.h"
 #include "core/ImageryPyramid.h"
+#include "core/SunLight.h"
 #include "core/Terrain.h"
 #include "raycast/RaycastOptions.h"
 
@@ -30,10 +31,13 @@ namespace overflight {
 // sample's light (128 is 1) times the imagery's nearest texel at the slice's
 // ground point on the mip level of the pixel's footprint (ImageryTexels.h).
 // `colors` (one per sample, e.g. sun-lit: core/SunLight.h) are painted
-// instead of the terrain's own when given.
+// instead of the terrain's own when given. With `mask` (the light mask those
+// colors were lit with), where it differs between the samples of slices i - 1
+// and i, the rows whose rays pass below the point halfway between the two
+// take sample i's color under sample i - 1's light (raycast/FrontFace.h).
 void render_floating_horizon_literal(const Terrain& terrain, const Environment& env, const Camera& camera,
                                      SurfaceModel surface, ColorImage& color, DepthImage& depth,
                                      RaycastStats* stats = nullptr, const std::vector<Rgb8>* colors = nullptr,
-                                     const ImageryPyramid* imagery = nullptr);
+                                     const ImageryPyramid* imagery = nullptr, const LightMask& mask = {});
 
 } // namespace overflight

@@ -71,6 +71,8 @@ void slice_slopes(const std::vector<double>& d, const Terrain& terrain, float ma
     out.b.resize(n);
     out.smax.resize(n);
     const double vs = terrain.v_scale(), y0 = terrain.y_offset();
+    out.v_scale = vs;
+    out.base = y0 - eye_y;
     float running = -kInf;
     for (std::size_t k = n; k-- > 0;) {
         const double inv = 1.0 / d[k];

@@ -63,8 +63,11 @@ void place_slices(const SlicePlacement& placement, Slices& out);
 // when h a[k] + b[k] > m, i.e. (v_scale h + y_offset - eye_y) / d_k > m.
 // smax[k] is the largest such slope of any sample at slices k and beyond
 // (max_height: the highest sample, world units), rounded up.
+// v_scale and base (y_offset - eye_y) give the same slope for any view
+// depth d: (v_scale h + base) / d (FrontFace.h).
 struct SliceSlopes {
     std::vector<float> a, b, smax;
+    double v_scale = 1, base = 0;
 };
 void slice_slopes(const std::vector<double>& d, const Terrain& terrain, float max_height, double eye_y,
                   SliceSlopes& out);

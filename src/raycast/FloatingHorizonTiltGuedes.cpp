@@ -13,8 +13,10 @@
 // Carvalho, "An Algorithm for the Visualization of a Terrain with Objects",
 // SIBGRAPI 1997, Algorithm 1.
 #include "raycast/FloatingHorizonTilt.h"
+#include "raycast/FrontFace.h"
 
 #include <cstring>
+#include <limits>
 
 namespace overflight {
 
@@ -33,7 +35,10 @@ float bits_float(std::uint32_t u) {
 
 // Guedes' Algorithm 1 for column c: fogged (or aerial) colors and the view depth along
 // F' (as float bits) of rows [0, returned) go to out_c/out_d. Returns the rows
-// painted; `visited` receives the samples read.
+// painted; `visited` receives the samples read. Where the light mask changes
+// between the previous voxel's sample and this one, the rows whose rays pass
+// below the point where the mesh's light changes take the previous one's
+// light (FrontFace.h).
 int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int c, std::uint32_t* out_c,
                        std::uint32_t* out_d, long long& visited) {
     const CastFrame& f = s.frame;
@@ -56,16 +61,37 @@ int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int 
     const double dx = hs * ux, dy = hs * uz;
     int row = 0;
     int k = k0;
+    const Rgb8* other = s.terrain.other_colors;
+    // The previous voxel's position, sample and height (none at k0).
+    double prev_x = 0, prev_y = 0, prev_h = 0;
+    std::size_t prev_ci = 0;
     for (; k < k1; ++k) {
         const std::size_t ci = std::size_t(int(y + 0.5)) * std::size_t(t.cols()) + std::size_t(int(x + 0.5));
         const double h = t.v_scale() * double(t.heights()[ci]) + t.y_offset();
         if (h > z) {
-            std::uint32_t col = s.terrain.colors[ci];
-            if (s.imagery.bound()) // the light times the imagery at the ray's ground point
-                col = modulate_light(col, s.imagery.at(float(x * hs), float(y * hs), s.imagery.level(k, row)));
+            const std::uint32_t word = s.terrain.colors[ci];
+            std::uint32_t col = word & kRgbBits, near_col = col;
+            // Rows whose ray slope is below where the light changes take near_col.
+            double below = -std::numeric_limits<double>::infinity();
+            if (other && k > k0 && light_changes(s.terrain.colors[prev_ci], word)) {
+                const std::uint32_t* colors = s.terrain.colors.data();
+                const double cross = cell_crossing(prev_x + 0.5, prev_y + 0.5, x + 0.5, y + 0.5,
+                                               (word & kShadowedBit) == 0, [&](int cell_col, int cell_row) {
+                                                   return (colors[std::size_t(cell_row) * std::size_t(t.cols()) + std::size_t(cell_col)] &
+                                                           kShadowedBit) != 0;
+                                               });
+                below = (0.5 * (prev_h + h) - ey) / (v - (1.0 - cross) * hs);
+                near_col = pack_rgb(other[ci]);
+            }
+            if (s.imagery.bound()) { // the light times the imagery at the ray's ground point
+                const Rgba8 albedo = s.imagery.at(float(x * hs), float(y * hs), s.imagery.level(k, row));
+                col = modulate_light(col, albedo);
+                near_col = modulate_light(near_col, albedo);
+            }
             do {
                 const double dist = std::sqrt(v * v * lat * lat + (z - ey) * (z - ey));
-                out_c[row] = s.hit_color(col, float(dist), float(z - ey), float((v * lat_sun + (z - ey) * s.sun.y) / dist));
+                out_c[row] = s.hit_color((z - ey) / v < below ? near_col : col, float(dist), float(z - ey),
+                                         float((v * lat_sun + (z - ey) * s.sun.y) / dist));
                 out_d[row] = float_bits(float(d));
                 if (row + 1 >= rc) {
                     ++row;
@@ -78,6 +104,10 @@ int cast_guedes_column(const FloatingHorizonState& s, const Camera& camera, int 
             } while (h > z);
             if (row >= rc) break;
         }
+        prev_x = x;
+        prev_y = y;
+        prev_ci = ci;
+        prev_h = h;
         x += dx;
         y += dy;
         v += hs;
