@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include <span>
+#include <vector>
 
 namespace overflight {
 
@@ -26,12 +27,20 @@ struct PixelRect {
 
 // The union of the screen rectangles of `boxes` for `camera`, one pixel wider
 // on every side (rasterisation of lines and edges on the boundary), clipped to
-// the image. A box wholly behind the near plane is skipped; one cut by it,
-// whose corners then do not bound its projection, gives the whole image. No
-// box in front gives an empty rectangle.
+// the image. A box wholly behind the near plane is skipped; of one cut by
+// it, the part in front is bounded (its corners in front and its edges'
+// crossings of the plane). No box in front gives an empty rectangle.
 PixelRect screen_rect(std::span<const WorldBox> boxes, const Camera& camera);
 
 // The smallest rectangle holding both (an empty one adds nothing).
 PixelRect bounding_union(const PixelRect& a, const PixelRect& b);
+
+// Pairwise disjoint rectangles whose union is exactly the union of `rects`
+// (empty ones ignored): horizontal bands between the rectangles' row edges,
+// each cut into the runs of columns some rectangle covers, and a band's
+// runs merged with the band above where they are the same. A pass that
+// blends into each pixel once (not idempotent) draws every one of them
+// instead of the bounding rectangle of widely spread rects.
+std::vector<PixelRect> disjoint_cover(std::span<const PixelRect> rects);
 
 } // namespace overflight

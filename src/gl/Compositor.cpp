@@ -6,7 +6,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace overflight::gl {
@@ -36,6 +39,14 @@ void depth_test_on() {
 
 Compositor::Compositor(const Terrain& terrain, const Scene& scene)
     : terrain_(terrain), terrain_min_(terrain.min_height()), vehicle_(terrain) {
+    block_rows_ = (terrain.rows() + kFloorBlock - 1) / kFloorBlock;
+    block_cols_ = (terrain.cols() + kFloorBlock - 1) / kFloorBlock;
+    block_min_.assign(std::size_t(block_rows_) * std::size_t(block_cols_), std::numeric_limits<float>::max());
+    for (int row = 0; row < terrain.rows(); ++row)
+        for (int col = 0; col < terrain.cols(); ++col) {
+            float& m = block_min_[std::size_t(row / kFloorBlock) * std::size_t(block_cols_) + std::size_t(col / kFloorBlock)];
+            m = std::min(m, terrain.sample_height(row, col));
+        }
     objects_.set_scene(scene, terrain);
     if (const ImageryPyramid* imagery = terrain.imagery()) imagery_texture_.upload(*imagery);
 }
@@ -113,8 +124,8 @@ CompositeCounts Compositor::draw_staged(int slot, const Camera& camera, const En
     return compose(nullptr, slot, camera, environment, target, timer, options);
 }
 
-PixelRect Compositor::object_shadow_rect(const Camera& camera, const Environment& environment,
-                                         const CompositeOptions& options) const {
+std::vector<PixelRect> Compositor::object_shadow_rects(const Camera& camera, const Environment& environment,
+                                                       const CompositeOptions& options) const {
     // As begin() and ObjectShadowMap::update() decide it: shadows on, the sun
     // above the horizon, objects or the vehicle to cast them, the sun's light
     // painted. The vehicle's box is where it will be placed (bounds_at), as
@@ -123,9 +134,43 @@ PixelRect Compositor::object_shadow_rect(const Camera& camera, const Environment
     if (!environment.shadows || !(sun.y > 0) || environment.baked) return {};
     std::vector<WorldBox> casters = objects_.bounds();
     if (options.vehicle) casters.push_back(vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading));
-    if (casters.empty()) return {};
-    // The pixels an object's shadow can reach, down to the lowest terrain.
-    return screen_rect(ObjectShadowMap::reach(casters, sun, terrain_min_), camera);
+    // The pixels each object's shadow can reach, down to the lowest terrain:
+    // one rectangle per caster, not their bounding rectangle, as the pass
+    // costs llvmpipe per pixel it covers (whether a shadow falls there or
+    // not) and the scene's objects lie far apart.
+    // Each reach goes down to the lowest surface under it rather than to the
+    // lowest terrain (a hill's objects shade that hill, not the sea floor):
+    // the reach down to a floor holds every point the shadow falls on, so
+    // the lowest sample under it (or the water level above that) is a
+    // floor again, twice over.
+    std::vector<PixelRect> rects;
+    for (const WorldBox& caster : casters) {
+        float floor = terrain_min_;
+        WorldBox reach = ObjectShadowMap::reach({caster}, sun, floor).front();
+        for (int pass = 0; pass < 2; ++pass) {
+            floor = floor_under(reach);
+            if (environment.water) floor = std::max(floor, environment.water_level);
+            reach = ObjectShadowMap::reach({caster}, sun, floor).front();
+        }
+        rects.push_back(screen_rect(std::span<const WorldBox>(&reach, 1), camera));
+    }
+    return disjoint_cover(rects);
+}
+
+float Compositor::floor_under(const WorldBox& box) const {
+    // The samples whose nearest-sample or bilinear surface reaches into the
+    // box's footprint (a cell of margin), by blocks of kFloorBlock samples;
+    // a cell lower still for the window depth's rounding.
+    const float cell = terrain_.h_scale();
+    const auto block = [&](float v, int blocks) {
+        return std::clamp(int(std::floor(v / cell)) / kFloorBlock, 0, blocks - 1);
+    };
+    const int c0 = block(box.lo.x - cell, block_cols_), c1 = block(box.hi.x + cell, block_cols_);
+    const int r0 = block(box.lo.z - cell, block_rows_), r1 = block(box.hi.z + cell, block_rows_);
+    float lowest = std::numeric_limits<float>::max();
+    for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; ++c) lowest = std::min(lowest, block_min_[std::size_t(r) * std::size_t(block_cols_) + std::size_t(c)]);
+    return std::max(terrain_min_, lowest - cell);
 }
 
 PixelRect Compositor::depth_rect(const Camera& camera, const Environment& environment,
@@ -136,7 +181,8 @@ PixelRect Compositor::depth_rect(const Camera& camera, const Environment& enviro
         const WorldBox box = vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
         r = bounding_union(r, screen_rect(std::span<const WorldBox>(&box, 1), camera));
     }
-    return bounding_union(r, object_shadow_rect(camera, environment, options));
+    for (const PixelRect& shadow : object_shadow_rects(camera, environment, options)) r = bounding_union(r, shadow);
+    return r;
 }
 
 CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Camera& camera,
@@ -166,10 +212,10 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
     if (images) {
         draw_images(out, slot, camera, environment, *into, timer, options);
         if (options.objects) {
-            const PixelRect rect = object_shadow_rect(camera, environment, options);
-            if ((object_shadow_.active() || vehicle_shadow_.active()) && !rect.empty()) {
+            const std::vector<PixelRect> rects = object_shadow_rects(camera, environment, options);
+            if ((object_shadow_.active() || vehicle_shadow_.active()) && !rects.empty()) {
                 timer.begin_gl("object_shadows");
-                object_shadow_pass_.draw(*into, camera, rect);
+                object_shadow_pass_.draw(*into, camera, rects);
                 timer.end_gl();
             }
         }

@@ -67,6 +67,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace overflight::gl {
 
@@ -134,12 +135,20 @@ private:
     // Loads the images (staged now from `out` when given, else from `slot`) into `into`.
     void draw_images(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
                      RenderTarget& into, StepTimer& timer, const CompositeOptions& options);
-    // Where the objects' shadow pass darkens the ray-cast image (empty when it does not run).
-    PixelRect object_shadow_rect(const Camera& camera, const Environment& environment, const CompositeOptions& options) const;
+    // Where the objects' shadow pass darkens the ray-cast image (none when it
+    // does not run): each caster's reach on screen, as disjoint rectangles.
+    std::vector<PixelRect> object_shadow_rects(const Camera& camera, const Environment& environment,
+                                               const CompositeOptions& options) const;
+    // A height below every terrain sample under `box`'s footprint (from the
+    // terrain's per-block minima), at least the terrain's lowest.
+    float floor_under(const WorldBox& box) const;
     long long draw_surface(const MethodOutput& out, const Camera& camera, StepTimer& timer, CompositeCounts& counts);
 
     const Terrain& terrain_;
     const float terrain_min_; // Terrain::min_height(), which reads every sample
+    static constexpr int kFloorBlock = 32; // samples per side of a block of block_min_
+    int block_rows_ = 0, block_cols_ = 0;
+    std::vector<float> block_min_; // the lowest sample of each block, row-major
     FrameUniforms frame_;
     ShadowCeiling shadow_;
     bool shadow_valid_ = false;

@@ -70,13 +70,12 @@ void main() {
 
 } // namespace
 
-void ShadowScreenPass::draw(const RenderTarget& target, const Camera& camera, const PixelRect& rect) {
-    if (rect.empty()) return;
+void ShadowScreenPass::draw(const RenderTarget& target, const Camera& camera, std::span<const PixelRect> rects) {
+    if (rects.empty()) return;
     if (!program_) {
         program_ = make_program("object-shadow-pass", kPassVs, kPassFs);
         vao_ = make_vertex_array();
     }
-    const int w = rect.col1 - rect.col0, h = rect.row1 - rect.row0;
     // The depth is sampled, so it must not be attached where the pass draws.
     target.bind_color_only();
 
@@ -89,11 +88,14 @@ void ShadowScreenPass::draw(const RenderTarget& target, const Camera& camera, co
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(rect.col0, camera.height - rect.row1, w, h);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_SRC1_COLOR);
     glBindVertexArray(vao_.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    for (const PixelRect& rect : rects) {
+        if (rect.empty()) continue;
+        glScissor(rect.col0, camera.height - rect.row1, rect.col1 - rect.col0, rect.row1 - rect.row0);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glDepthMask(GL_TRUE);

@@ -18,6 +18,8 @@
 #include "core/ScreenRect.h"
 #include "gl/GlProgram.h"
 
+#include <span>
+
 namespace overflight::gl {
 
 class RenderTarget;
@@ -26,13 +28,14 @@ class ShadowScreenPass {
 public:
     static constexpr GLuint kUnit = 9; // the target's depth attachment
 
-    // Darkens the pixels of `rect` (core rows) of the offscreen `target` that
-    // lie in the objects' shadows, reading the terrain's window depth from
-    // the target's depth attachment, which must hold it within `rect` (the
-    // objects not drawn yet). Binds the target's color alone. Needs the frame
-    // block, the terrain's shadow ceiling texture and an active
-    // ObjectShadowMap bound.
-    void draw(const RenderTarget& target, const Camera& camera, const PixelRect& rect);
+    // Darkens the pixels of `rects` (core rows; pairwise disjoint, as the
+    // pass blends) of the offscreen `target` that lie in the objects'
+    // shadows, reading the terrain's window depth from the target's depth
+    // attachment, which must hold it within the rects (the objects not drawn
+    // yet). Binds the target's color alone. Needs the frame block, the
+    // terrain's shadow ceiling texture and an active ObjectShadowMap bound.
+    // One scissored draw per rectangle: llvmpipe's cost is per pixel covered.
+    void draw(const RenderTarget& target, const Camera& camera, std::span<const PixelRect> rects);
 
 private:
     Program program_;
