@@ -1,7 +1,8 @@
 // The cost of a new sun direction on the demo island (default 4097², as the
 // speed target's; environment OVERFLIGHT_BENCH_DEMO_SIZE sets it): the
-// horizon sweep writing float ceilings (what the GL methods upload) or the
-// shadow mask alone (what the ray casters' lighting reads), and the light of
+// horizon sweep writing float ceilings (what the GL methods upload), the
+// shadow mask alone (what the ray casters' lighting reads) or both in one
+// pass (what `fly` shares between the two), and the light of
 // every sample from either (core/HorizonSweep.h, core/SunLight.h). The suns
 // are a day's arc, one per iteration, as the time-of-day keys move it.
 //   bench_sun_bench --benchmark_repetitions=5 (compare the minima on a busy machine)
@@ -48,6 +49,16 @@ void BM_SweepMask(benchmark::State& state) {
     for (auto _ : state) sweep_shadow_mask(t, sun_of(i++), mask);
 }
 
+// Both in one pass (what `fly` sweeps per sun direction for the ray caster's
+// lighting and the compositor's ceiling together, core/SharedSunShadow.h).
+void BM_SweepBoth(benchmark::State& state) {
+    const Terrain& t = island().terrain;
+    ShadowCeiling c;
+    std::vector<std::uint8_t> mask;
+    long long i = 0;
+    for (auto _ : state) sweep_shadow(t, sun_of(i++), c, mask);
+}
+
 // The light alone, for one sun (its sweep done before timing).
 void BM_LightFromCeiling(benchmark::State& state) {
     const Terrain& t = island().terrain;
@@ -90,6 +101,7 @@ void BM_NewSunMaskAndLight(benchmark::State& state) {
 
 BENCHMARK(BM_SweepCeiling)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SweepMask)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SweepBoth)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LightFromCeiling)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LightFromMask)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_NewSunMaskAndLight)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -200,10 +200,13 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     if (normals_.packed.empty()) normals_ = pack_normals(terrain_);
     if (env.shadows) {
         const glm::vec3 sun = unit_sun(env);
-        if (!shadow_valid_ || shadow_for_ != sun) sweep_shadow_mask(terrain_, sun, shadow_);
+        if (!shadow_valid_ || shadow_for_ != sun) {
+            if (shared_) shared_shadow_ = shared_->get(sun);
+            else sweep_shadow_mask(terrain_, sun, shadow_);
+        }
         shadow_valid_ = true;
         shadow_for_ = sun;
-        light_colors(terrain_, normals_, env, shadow_, colors_, output_);
+        light_colors(terrain_, normals_, env, shared_ ? shared_shadow_->mask : shadow_, colors_, output_);
     } else {
         light_colors(terrain_, normals_, env, nullptr, colors_, output_);
     }

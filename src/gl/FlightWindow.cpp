@@ -158,7 +158,12 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
                                const ScreenshotSink& screenshot) {
     // The vehicle and the first method's name first, so bad input fails before a window flashes up.
     FlightSession session(data.terrain, data.environment, options.session);
-    MethodSet methods(context, options.method);
+    // One horizon sweep per sun direction for the ray casters' lighting and
+    // the compositor's shadow ceiling.
+    SharedSunShadow sun_shadow(data.terrain);
+    MethodContext shared_context = context;
+    shared_context.sun_shadow = &sun_shadow;
+    MethodSet methods(shared_context, options.method);
     std::size_t current = 0;
 
     WindowContext window("Overflight - " + data.info.source, options.width, options.height, options.visible);
@@ -168,6 +173,7 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
     Hud hud(window.window()); // after our callback: ImGui chains to it
     methods.get(current);
     Compositor compositor(data.terrain, data.scene);
+    compositor.share_sun_shadow(&sun_shadow);
 
     FlightResult result;
     ColorImage shot;
