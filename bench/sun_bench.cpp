@@ -11,6 +11,7 @@
 #include "core/SunLight.h"
 
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 #include <tbb/global_control.h>
 
 #include <cstdlib>
@@ -32,21 +33,37 @@ const PackedNormals& normals() {
     return n;
 }
 
+// CPU time of the whole process (every thread's, oneTBB's workers
+// included), which on a busy machine varies far less than the wall time:
+// a sweep's counter "cpu_ms" over the cores it has (2) bounds its wall time
+// on an idle machine from below (perfect scaling).
+double process_cpu_ms() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return 1e3 * double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-3 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// Runs `step(i)` per iteration and reports its process CPU time per iteration.
+template <class Step> void timed(benchmark::State& state, Step step) {
+    long long i = 0;
+    const double cpu0 = process_cpu_ms();
+    for (auto _ : state) step(i++);
+    state.counters["cpu_ms"] = benchmark::Counter(process_cpu_ms() - cpu0, benchmark::Counter::kAvgIterations);
+}
+
 // The sun of iteration i: 7:00 to 17:00 in steps of 1.25 h, round and round.
 glm::vec3 sun_of(long long i) { return sun_at_hour(7.0 + 1.25 * double(i % 9)); }
 
 void BM_SweepCeiling(benchmark::State& state) {
     const Terrain& t = island().terrain;
     ShadowCeiling c;
-    long long i = 0;
-    for (auto _ : state) sweep_shadow_ceiling(t, sun_of(i++), c);
+    timed(state, [&](long long i) { sweep_shadow_ceiling(t, sun_of(i), c); });
 }
 
 void BM_SweepMask(benchmark::State& state) {
     const Terrain& t = island().terrain;
     std::vector<std::uint8_t> mask;
-    long long i = 0;
-    for (auto _ : state) sweep_shadow_mask(t, sun_of(i++), mask);
+    timed(state, [&](long long i) { sweep_shadow_mask(t, sun_of(i), mask); });
 }
 
 // Both in one pass (what `fly` sweeps per sun direction for the ray caster's
@@ -55,8 +72,7 @@ void BM_SweepBoth(benchmark::State& state) {
     const Terrain& t = island().terrain;
     ShadowCeiling c;
     std::vector<std::uint8_t> mask;
-    long long i = 0;
-    for (auto _ : state) sweep_shadow(t, sun_of(i++), c, mask);
+    timed(state, [&](long long i) { sweep_shadow(t, sun_of(i), c, mask); });
 }
 
 // The light alone, for one sun (its sweep done before timing).

@@ -346,7 +346,12 @@ FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& 
                                        const MethodEntry& entry, const MethodContext& context, int width, int height,
                                        double fov, const std::function<void(const ColorImage&, long long frame)>& sink) {
     HeadlessRenderer renderer(data.terrain, data.scene);
-    std::unique_ptr<TerrainMethod> method = entry.create(context);
+    // One horizon sweep for the method's lighting and the compositor, as in the window.
+    SharedSunShadow sun_shadow(data.terrain);
+    MethodContext shared_context = context;
+    shared_context.sun_shadow = &sun_shadow;
+    renderer.compositor().share_sun_shadow(&sun_shadow);
+    std::unique_ptr<TerrainMethod> method = entry.create(shared_context);
     FlightMethodStats stats{entry.name};
     MethodStats method_stats;
     FrameTimings timings;
