@@ -7,6 +7,13 @@
 // time-of-day keys: the ray caster casting the next frame on a task while the
 // compositor draws this one).
 //
+// A moved sun is swept anew rather than answered from each sample's horizon
+// slope along the azimuth (Stewart sec. 3: any elevation at that azimuth
+// then a compare): the time-of-day keys move the azimuth with the elevation,
+// and that horizon needs a convex hull per sun line and a tangent per sample,
+// more than twice the instructions of the running maximum the sweep keeps
+// for one elevation (README, sun shadows).
+//
 // Thread safe: the first caller for a direction sweeps, a concurrent caller
 // for the same direction waits for it and shares the result. The latest
 // result is kept; a result still held by a caller stays valid after the sun
