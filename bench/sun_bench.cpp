@@ -75,6 +75,23 @@ void BM_SweepBoth(benchmark::State& state) {
     timed(state, [&](long long i) { sweep_shadow(t, sun_of(i), c, mask); });
 }
 
+// The one pass for a sun that moves in elevation alone (azimuth 135, from 10
+// to 50 degrees up) and for one that moves in small azimuth steps (0.5
+// degrees, 30 up): the sweep costs what a new direction costs either way.
+void BM_SweepBothNewElevation(benchmark::State& state) {
+    const Terrain& t = island().terrain;
+    ShadowCeiling c;
+    std::vector<std::uint8_t> mask;
+    timed(state, [&](long long i) { sweep_shadow(t, sun_direction(135.0, 10.0 + 5.0 * double(i % 9)), c, mask); });
+}
+
+void BM_SweepBothSmallAzimuthStep(benchmark::State& state) {
+    const Terrain& t = island().terrain;
+    ShadowCeiling c;
+    std::vector<std::uint8_t> mask;
+    timed(state, [&](long long i) { sweep_shadow(t, sun_direction(135.0 + 0.5 * double(i % 9), 30.0), c, mask); });
+}
+
 // The light alone, for one sun (its sweep done before timing).
 void BM_LightFromCeiling(benchmark::State& state) {
     const Terrain& t = island().terrain;
@@ -118,6 +135,8 @@ void BM_NewSunMaskAndLight(benchmark::State& state) {
 BENCHMARK(BM_SweepCeiling)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SweepMask)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SweepBoth)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SweepBothNewElevation)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SweepBothSmallAzimuthStep)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LightFromCeiling)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LightFromMask)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_NewSunMaskAndLight)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -201,7 +201,10 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     if (env.shadows) {
         const glm::vec3 sun = unit_sun(env);
         if (!shadow_valid_ || shadow_for_ != sun) {
-            if (shared_) shared_shadow_ = shared_->get(sun);
+            if (shared_) {
+                shared_shadow_.reset(); // so that the shared sweep may reuse its storage
+                shared_shadow_ = shared_->get(sun);
+            }
             else sweep_shadow_mask(terrain_, sun, shadow_);
         }
         shadow_valid_ = true;
