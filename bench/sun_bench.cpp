@@ -34,9 +34,10 @@ const PackedNormals& normals() {
 }
 
 // CPU time of the whole process (every thread's, oneTBB's workers
-// included), which on a busy machine varies far less than the wall time:
-// a sweep's counter "cpu_ms" over the cores it has (2) bounds its wall time
-// on an idle machine from below (perfect scaling).
+// included), reported per iteration as the counter "cpu_ms": on a busy
+// machine it varies less than the wall time, though contention (and a
+// virtual machine's stolen time) still inflates it; callgrind's instruction
+// counts are the load-independent check.
 double process_cpu_ms() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
