@@ -111,8 +111,8 @@ struct BandScratch {
 // kLines j + phase) keeps its ceilings contiguous in j, so that the inner
 // loops run over contiguous arrays and vectorize.
 //
-// The block's results go to `ceiling` (world heights) or, when that is null,
-// to `mask` (1 where the sample's own height is below its ceiling): the
+// The block's results go to `ceiling` (world heights) and/or `mask` (1 where
+// the sample's own height is below its ceiling), whichever is not null: the
 // block holds both the sample's height and its ceiling, so the mask needs
 // neither read again.
 void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ceiling, std::uint8_t* mask,
@@ -219,10 +219,10 @@ void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* cei
             }
         }
 
-        // The block's ceilings back into the grid.
+        // The block's ceilings back into the grid, as floats, as the mask or both.
         const float* O = b.out.data();
-        if (!ceiling) {
-            // The mask instead: here[p] of line i is the sample's own height (Terrain::sample_height).
+        if (mask) {
+            // here[p] of line i is the sample's own height (Terrain::sample_height).
             if (g.stride_line == 1) {
                 int lo = g.length, hi = 0;
                 for (int i = 0; i < n_lines; ++i)
@@ -241,8 +241,8 @@ void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* cei
                     for (int p = b.p0[i]; p < b.p1[i]; ++p) dst[p] = h[p] < c[p] ? 1 : 0;
                 }
             }
-            continue;
         }
+        if (!ceiling) continue;
         if (g.stride_line == 1) {
             int lo = g.length, hi = 0;
             for (int i = 0; i < n_lines; ++i)
@@ -283,33 +283,41 @@ void sweep_bands(const Terrain& t, const glm::vec3& sun, float* ceiling, std::ui
 bool below_horizon(const glm::vec3& sun) { return !(sun.y > 0); }
 bool in_zenith(const glm::vec3& sun) { return std::hypot(sun.x, sun.z) <= 1e-6f * sun.y; }
 
+// Sizes the outputs that are not null and sweeps into them; a sun at or below
+// the horizon shadows everything, a sun in the zenith nothing.
+void sweep(const Terrain& t, const glm::vec3& sun_dir, ShadowCeiling* ceiling, std::vector<std::uint8_t>* mask) {
+    const glm::vec3 sun = unit_sun(sun_dir);
+    const std::size_t n = std::size_t(t.rows()) * std::size_t(t.cols());
+    if (ceiling) {
+        ceiling->rows = t.rows();
+        ceiling->cols = t.cols();
+        ceiling->sun_dir = sun;
+        ceiling->ceiling.resize(n);
+    }
+    if (mask) mask->resize(n);
+    if (below_horizon(sun) || in_zenith(sun)) {
+        const bool all = below_horizon(sun);
+        if (ceiling)
+            std::fill(ceiling->ceiling.begin(), ceiling->ceiling.end(),
+                      all ? std::numeric_limits<float>::infinity() : ShadowCeiling::kOpen);
+        if (mask) std::fill(mask->begin(), mask->end(), all ? 1 : 0);
+        return;
+    }
+    sweep_bands(t, sun, ceiling ? ceiling->ceiling.data() : nullptr, mask ? mask->data() : nullptr);
+}
+
 } // namespace
 
 void sweep_shadow_ceiling(const Terrain& t, const glm::vec3& sun_dir, ShadowCeiling& out) {
-    out.rows = t.rows();
-    out.cols = t.cols();
-    out.sun_dir = unit_sun(sun_dir);
-    out.ceiling.resize(std::size_t(t.rows()) * std::size_t(t.cols()));
-    const glm::vec3 sun = out.sun_dir;
-    if (below_horizon(sun)) { // nothing is lit by the sun
-        std::fill(out.ceiling.begin(), out.ceiling.end(), std::numeric_limits<float>::infinity());
-        return;
-    }
-    if (in_zenith(sun)) { // no cast shadows
-        std::fill(out.ceiling.begin(), out.ceiling.end(), ShadowCeiling::kOpen);
-        return;
-    }
-    sweep_bands(t, sun, out.ceiling.data(), nullptr);
+    sweep(t, sun_dir, &out, nullptr);
 }
 
 void sweep_shadow_mask(const Terrain& t, const glm::vec3& sun_dir, std::vector<std::uint8_t>& mask) {
-    mask.resize(std::size_t(t.rows()) * std::size_t(t.cols()));
-    const glm::vec3 sun = unit_sun(sun_dir);
-    if (below_horizon(sun) || in_zenith(sun)) {
-        std::fill(mask.begin(), mask.end(), below_horizon(sun) ? 1 : 0);
-        return;
-    }
-    sweep_bands(t, sun, nullptr, mask.data());
+    sweep(t, sun_dir, nullptr, &mask);
+}
+
+void sweep_shadow(const Terrain& t, const glm::vec3& sun_dir, ShadowCeiling& ceiling, std::vector<std::uint8_t>& mask) {
+    sweep(t, sun_dir, &ceiling, &mask);
 }
 
 std::vector<std::uint8_t> shadow_mask(const Terrain& t, const ShadowCeiling& c) {

@@ -67,6 +67,14 @@ void sweep_shadow_ceiling(const Terrain& terrain, const glm::vec3& sun_dir, Shad
 // Reuses mask's storage.
 void sweep_shadow_mask(const Terrain& terrain, const glm::vec3& sun_dir, std::vector<std::uint8_t>& mask);
 
+// Both in one pass: the ceiling (as sweep_shadow_ceiling) and its mask (as
+// sweep_shadow_mask), for a renderer whose objects read the one and whose
+// terrain samples the other (a ray caster composited with objects), at
+// 1.1-1.3 times the cost of the ceiling alone rather than 1.5-2 times for
+// the two sweeps (README, sun shadows). Reuses the storage of both.
+void sweep_shadow(const Terrain& terrain, const glm::vec3& sun_dir, ShadowCeiling& ceiling,
+                  std::vector<std::uint8_t>& mask);
+
 // Per-sample mask (1 = in the terrain's shadow) of a sample's own height
 // against its ceiling, row-major.
 std::vector<std::uint8_t> shadow_mask(const Terrain& terrain, const ShadowCeiling& ceiling);

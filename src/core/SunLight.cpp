@@ -221,10 +221,17 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
     if (normals_.packed.empty()) normals_ = pack_normals(terrain_);
     if (env.shadows) {
         const glm::vec3 sun = unit_sun(env);
-        if (!shadow_valid_ || shadow_for_ != sun) sweep_shadow_mask(terrain_, sun, shadow_);
+        if (!shadow_valid_ || shadow_for_ != sun) {
+            if (shared_) {
+                shared_shadow_.reset(); // so that the shared sweep may reuse its storage
+                shared_shadow_ = shared_->get(sun);
+            }
+            else sweep_shadow_mask(terrain_, sun, shadow_);
+        }
         shadow_valid_ = true;
         shadow_for_ = sun;
-        light_colors(terrain_, normals_, env, shadow_, colors_, other_colors_, output_);
+        light_colors(terrain_, normals_, env, shared_ ? shared_shadow_->mask : shadow_, colors_, other_colors_,
+                     output_);
         masked_ = true;
     } else {
         light_colors(terrain_, normals_, env, nullptr, colors_, output_);
@@ -234,7 +241,7 @@ const std::vector<Rgb8>* TerrainLighting::colors(const Environment& env) {
 
 LightMask TerrainLighting::light_mask() const {
     if (!masked_) return {};
-    return {&shadow_, &other_colors_};
+    return {shared_ ? &shared_shadow_->mask : &shadow_, &other_colors_};
 }
 
 } // namespace overflight

@@ -14,11 +14,13 @@
 #include "core/DataSet.h"
 #include "core/HorizonSweep.h"
 #include "core/PackedNormals.h"
+#include "core/SharedSunShadow.h"
 #include "core/Terrain.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace overflight {
@@ -91,12 +93,16 @@ void light_colors(const Terrain& terrain, const PackedNormals& normals, const En
 // only when the sun, its colors or Environment::shadows change (the horizon
 // sweep only when the sun's direction does), so that a still sun costs a
 // comparison per frame. The sweep writes the shadow mask alone
-// (sweep_shadow_mask), which the light reads.
+// (sweep_shadow_mask), which the light reads; or, given a SharedSunShadow,
+// the light reads the mask of the sweep it shares with the other renderers
+// of the terrain (the compositor's ceiling).
 class TerrainLighting {
 public:
-    // Keeps a reference to terrain (it must outlive this object).
-    explicit TerrainLighting(const Terrain& terrain, LightOutput output = LightOutput::Colors)
-        : terrain_(terrain), output_(output) {}
+    // Keeps a reference to terrain and to `shared` (null: sweeps its own
+    // mask), which must outlive this object.
+    explicit TerrainLighting(const Terrain& terrain, LightOutput output = LightOutput::Colors,
+                             SharedSunShadow* shared = nullptr)
+        : terrain_(terrain), output_(output), shared_(shared) {}
 
     // The colors to paint for `env`: nullptr when lighting is baked (the
     // terrain's own colors), else the lit colors; with LightOutput::Light,
@@ -113,13 +119,15 @@ private:
     LightOutput output_;
     bool valid_ = false, baked_ = false;
     Environment lit_for_;
-    std::vector<std::uint8_t> shadow_; // sweep_shadow_mask for shadow_for_
+    SharedSunShadow* shared_;
+    std::shared_ptr<const SunShadow> shared_shadow_; // shared_'s for shadow_for_
+    std::vector<std::uint8_t> shadow_; // sweep_shadow_mask for shadow_for_, without shared_
     glm::vec3 shadow_for_{0.0f};
     bool shadow_valid_ = false;
     PackedNormals normals_; // packed on the first lit call
     std::vector<Rgb8> colors_;
     std::vector<Rgb8> other_colors_; // LightMask::other_colors, with shadows
-    bool masked_ = false;            // colors_ are shadowed by shadow_
+    bool masked_ = false;            // colors_ are shadowed by the mask (shadow_ or shared_shadow_'s)
     std::uint64_t version_ = 0;
 };
 

@@ -63,11 +63,16 @@ glm::vec4 Compositor::terrain_shadow(const Environment& environment, StepTimer& 
     const glm::vec3 sun = glm::length(environment.sun_dir) > 0 ? glm::normalize(environment.sun_dir) : glm::vec3(0, 1, 0);
     // A sun at or below the horizon lights nothing (shade()): nothing to sweep.
     if (!environment.shadows || !(sun.y > 0)) return glm::vec4(0.0f);
-    if (!shadow_valid_ || shadow_.sun_dir != sun) {
+    if (!shadow_valid_ || shadow_for_ != sun) {
         const auto t0 = std::chrono::steady_clock::now();
-        sweep_shadow_ceiling(terrain_, sun, shadow_);
-        shadow_texture_.upload(shadow_, terrain_);
+        if (shared_shadow_) {
+            shadow_texture_.upload(shared_shadow_->get(sun)->ceiling, terrain_);
+        } else {
+            sweep_shadow_ceiling(terrain_, sun, shadow_);
+            shadow_texture_.upload(shadow_, terrain_);
+        }
         shadow_valid_ = true;
+        shadow_for_ = sun;
         timer.cpu_step_since("shadow_sweep", t0);
     }
     shadow_texture_.bind();

@@ -47,6 +47,7 @@
 // CMSC 23700 hovercraft project sec. 3-4 (vehicle, sun, fog, sky).
 #include "core/Camera.h"
 #include "core/DataSet.h"
+#include "core/SharedSunShadow.h"
 #include "gl/BlockTerrain.h"
 #include "gl/FlightVehicle.h"
 #include "gl/FrameUniforms.h"
@@ -100,6 +101,15 @@ public:
     CompositeCounts draw(const MethodOutput& out, const Camera& camera, const Environment& environment,
                          RenderTarget& target, StepTimer& timer, const CompositeOptions& options);
 
+    // Takes the terrain's shadow ceiling from `shared` (which must outlive
+    // this), swept once per sun direction for this compositor and the ray
+    // casters whose images it draws (MethodContext::sun_shadow), rather than
+    // sweeping its own. Null: its own again.
+    void share_sun_shadow(SharedSunShadow* shared) {
+        shared_shadow_ = shared;
+        shadow_valid_ = false;
+    }
+
     // Uploads a resident representation now (draw() does it on first use).
     void prepare(ResidentSurface surface);
 
@@ -150,7 +160,9 @@ private:
     int block_rows_ = 0, block_cols_ = 0;
     std::vector<float> block_min_; // the lowest sample of each block, row-major
     FrameUniforms frame_;
-    ShadowCeiling shadow_;
+    SharedSunShadow* shared_shadow_ = nullptr; // share_sun_shadow()
+    ShadowCeiling shadow_;                     // without shared_shadow_
+    glm::vec3 shadow_for_{0.0f};               // the sun of the uploaded ceiling
     bool shadow_valid_ = false;
     ShadowCeilingTexture shadow_texture_;
     ObjectShadowMap object_shadow_;

@@ -158,7 +158,12 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
                                const ScreenshotSink& screenshot) {
     // The vehicle and the first method's name first, so bad input fails before a window flashes up.
     FlightSession session(data.terrain, data.environment, options.session);
-    MethodSet methods(context, options.method);
+    // One horizon sweep per sun direction for the ray casters' lighting and
+    // the compositor's shadow ceiling.
+    SharedSunShadow sun_shadow(data.terrain);
+    MethodContext shared_context = context;
+    shared_context.sun_shadow = &sun_shadow;
+    MethodSet methods(shared_context, options.method);
     std::size_t current = 0;
 
     WindowContext window("Overflight - " + data.info.source, options.width, options.height, options.visible);
@@ -168,6 +173,7 @@ FlightResult run_flight_window(const DataSet& data, const FlightWindowOptions& o
     Hud hud(window.window()); // after our callback: ImGui chains to it
     methods.get(current);
     Compositor compositor(data.terrain, data.scene);
+    compositor.share_sun_shadow(&sun_shadow);
 
     FlightResult result;
     ColorImage shot;
@@ -340,7 +346,12 @@ FlightMethodStats render_flight_record(const DataSet& data, const FlightRecord& 
                                        const MethodEntry& entry, const MethodContext& context, int width, int height,
                                        double fov, const std::function<void(const ColorImage&, long long frame)>& sink) {
     HeadlessRenderer renderer(data.terrain, data.scene);
-    std::unique_ptr<TerrainMethod> method = entry.create(context);
+    // One horizon sweep for the method's lighting and the compositor, as in the window.
+    SharedSunShadow sun_shadow(data.terrain);
+    MethodContext shared_context = context;
+    shared_context.sun_shadow = &sun_shadow;
+    renderer.compositor().share_sun_shadow(&sun_shadow);
+    std::unique_ptr<TerrainMethod> method = entry.create(shared_context);
     FlightMethodStats stats{entry.name};
     MethodStats method_stats;
     FrameTimings timings;

@@ -2,6 +2,7 @@
 // The table of terrain methods that `render`, `bench` and `fly` all read. A
 // new method is one file (a TerrainMethod and its make_ function) plus one row
 // in MethodTable.cpp; every command then offers it.
+#include "core/SharedSunShadow.h"
 #include "core/Terrain.h"
 #include "methods/MethodSettings.h"
 #include "methods/TerrainMethod.h"
@@ -22,6 +23,10 @@ struct MethodContext {
     // lazily (set by the command, which owns files); empty: tiles are cut from
     // `terrain` on demand.
     std::function<std::unique_ptr<TileSet>()> tiles;
+    // The terrain's sun shadow shared with the compositor that draws the
+    // method's images (one sweep per sun direction for both); null: the
+    // method sweeps its own.
+    SharedSunShadow* sun_shadow = nullptr;
 };
 
 // What `render` and `bench` do with an Images method's output (Szenberg et

@@ -19,7 +19,7 @@ class RayMarchMethod final : public TerrainMethod {
 public:
     explicit RayMarchMethod(const MethodContext& c)
         : marcher_(c.terrain, env_),
-          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors),
+          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors, c.sun_shadow),
           water_(c.terrain),
           surface_(c.settings.raycast.surface) {
         marcher_.set_imagery(c.terrain.imagery());

@@ -19,7 +19,7 @@ class VoxelLiteralMethod final : public TerrainMethod {
 public:
     explicit VoxelLiteralMethod(const MethodContext& c)
         : terrain_(c.terrain),
-          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors),
+          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors, c.sun_shadow),
           water_(c.terrain),
           options_(c.settings.raycast) {
         if (options_.lod) throw Error("distance LOD", "voxel-literal has none (it is Algorithm 1 as printed)");

@@ -21,7 +21,7 @@ class VoxelMethod final : public TerrainMethod {
 public:
     explicit VoxelMethod(const MethodContext& c)
         : caster_(c.terrain),
-          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors),
+          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors, c.sun_shadow),
           water_(c.terrain),
           options_(c.settings.raycast) {
         // Imagery finer than the samples: the cast paints light, the imagery the albedo.

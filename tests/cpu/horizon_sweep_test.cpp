@@ -306,3 +306,27 @@ TEST(HorizonSweep, MaskSweepIsTheCeilingsMask) {
         EXPECT_TRUE(from_ceiling == from_mask) << "sun " << az << "," << el;
     }
 }
+
+// The one-pass sweep of both (sweep_shadow) writes what the two sweeps write
+// apart, bit for bit, for the same suns (the zenith and below the horizon
+// included).
+TEST(HorizonSweep, OnePassIsBothSweeps) {
+    DemoOptions o;
+    o.size = 257;
+    const DataSet ds = make_demo_island(o);
+    const Terrain& t = ds.terrain;
+    ShadowCeiling both;
+    std::vector<std::uint8_t> both_mask;
+    for (const auto& [az, el] : {std::pair{30.0, 8.0}, {135.0, 20.0}, {225.0, 10.0}, {250.0, 12.0}, {300.0, 35.0},
+                                 {90.0, 60.0}, {0.0, 90.0}, {120.0, -5.0}}) {
+        const glm::vec3 sun = sun_direction(az, el);
+        ShadowCeiling ceiling;
+        sweep_shadow_ceiling(t, sun, ceiling);
+        std::vector<std::uint8_t> mask;
+        sweep_shadow_mask(t, sun, mask);
+        sweep_shadow(t, sun, both, both_mask); // storage reused from the previous sun
+        EXPECT_TRUE(both.ceiling == ceiling.ceiling) << "sun " << az << "," << el;
+        EXPECT_TRUE(both.sun_dir == ceiling.sun_dir);
+        EXPECT_EQ(both_mask, mask) << "sun " << az << "," << el;
+    }
+}
