@@ -65,8 +65,9 @@ TEST(SharedSunShadow, ConcurrentCallersShareOneSweep) {
 }
 
 // The ray casters' lighting and light mask from the shared sweep are their
-// lighting and mask from their own, byte for byte, along a day's arc; the shared sweep runs once per
-// direction for two lightings (two renderers of one terrain).
+// lighting and mask from their own, byte for byte, along a day's arc; the
+// shared sweep runs once per direction for two lightings (two renderers of
+// one terrain).
 TEST(SharedSunShadow, LightingFromTheSharedMaskIsTheSame) {
     const Terrain& t = island().terrain;
     SharedSunShadow shared(t);
