@@ -9,7 +9,6 @@
 namespace overflight {
 
 PixelRect screen_rect(std::span<const WorldBox> boxes, const Camera& camera) {
-    const PixelRect whole{0, 0, camera.width, camera.height};
     double c0 = HUGE_VAL, r0 = HUGE_VAL, c1 = -HUGE_VAL, r1 = -HUGE_VAL;
     const auto add = [&](const glm::dvec3& p) {
         const Camera::Projected q = camera.project(p);
