@@ -3,7 +3,10 @@
 # -Werror, runs every CTest label (cpu, gdal, gl, window) on the Release build,
 # builds examples/raycast_depth and the installed-header check against the
 # package installed into a fresh prefix, runs cpu and gdal again under
-# AddressSanitizer + UndefinedBehaviorSanitizer, and runs each libFuzzer
+# AddressSanitizer + UndefinedBehaviorSanitizer (without the four tiler runs
+# over large rasters that GTEST_FILTER in the asan test preset names: they
+# took 15 of the sanitizer stage's 17 test-minutes, and Release runs them),
+# and runs each libFuzzer
 # harness briefly. Exits non-zero if anything fails, and if any test was
 # skipped: CI has ../shared/data and may mount a tmpfs, so there a skipped
 # test is one that silently did not run.
