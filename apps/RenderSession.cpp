@@ -71,7 +71,9 @@ Scene objects_of(const DataSet& data, const std::string& scene_file) {
 
 RenderSession::RenderSession(const DataSet& data, const MethodOptions& options, std::string tile_dir)
     : data_(data), environment_(data.environment), settings_(options.settings()), scene_(objects_of(data, options.scene)),
-      tile_dir_(std::move(tile_dir)), context_{data.terrain, settings_, {}} {
+      tile_dir_(std::move(tile_dir)), sun_shadow_(std::make_unique<SharedSunShadow>(data.terrain)),
+      context_{data.terrain, settings_, {}} {
+    context_.sun_shadow = sun_shadow_.get();
     if (!tile_dir_.empty())
         context_.tiles = [dir = tile_dir_, bound = settings_.cache_bytes] { return tile_directory_tiles(dir, bound); };
 }
@@ -80,9 +82,14 @@ RenderSession::~RenderSession() = default;
 
 std::unique_ptr<TerrainMethod> RenderSession::create(const MethodEntry& row) {
     std::unique_ptr<TerrainMethod> method = row.create(context_);
-    if (!(method->output_kind() == MethodOutputKind::Images && row.composite == Composite::None) && !gl_)
-        gl_ = std::make_unique<gl::HeadlessRenderer>(data_.terrain, scene_);
+    if (!(method->output_kind() == MethodOutputKind::Images && row.composite == Composite::None)) make_gl();
     return method;
+}
+
+void RenderSession::make_gl() {
+    if (gl_) return;
+    gl_ = std::make_unique<gl::HeadlessRenderer>(data_.terrain, scene_);
+    gl_->compositor().share_sun_shadow(sun_shadow_.get());
 }
 
 void RenderSession::render(const MethodEntry& row, TerrainMethod& method, const Camera& camera, bool want_depth,
@@ -95,7 +102,7 @@ void RenderSession::render(const MethodEntry& row, TerrainMethod& method, const 
         view.depth = want_depth ? out.depth : nullptr;
         return;
     }
-    if (!gl_) gl_ = std::make_unique<gl::HeadlessRenderer>(data_.terrain, scene_);
+    make_gl();
     gl::CompositeOptions options;
     options.objects = out.kind != MethodOutputKind::Images || row.composite == Composite::Objects;
     gl_->render(out, camera, environment_, options, color_, want_depth ? &depth_ : nullptr, &view.gl);

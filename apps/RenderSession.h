@@ -86,13 +86,20 @@ public:
     void make_gl_current() {
         if (gl_) gl_->make_current();
     }
+    // How many horizon sweeps the session's renderers have run between them.
+    long long sun_sweeps() const { return sun_shadow_->sweeps(); }
 
 private:
+    void make_gl(); // the headless GL renderer, created once, sharing the sun's sweep
+
     const DataSet& data_;
     Environment environment_;
     MethodSettings settings_;
     Scene scene_;
     std::string tile_dir_;
+    // One horizon sweep per sun direction for the methods' lighting, their
+    // water and the compositor's shadow ceiling, as in `fly`.
+    std::unique_ptr<SharedSunShadow> sun_shadow_;
     MethodContext context_;
     std::unique_ptr<gl::HeadlessRenderer> gl_;
     ColorImage color_;

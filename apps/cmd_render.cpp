@@ -97,6 +97,7 @@ void add_render_command(CLI::App& app) {
             stats["ms"]["terrain_load"] = ms_load; // quadtree has its own "load" (tiles)
             stats["ms"]["render"] = ms_render;
             stats["ms"]["write"] = ms_write;
+            stats["sun_sweeps"] = session.sun_sweeps();
             write_stdout(stats.dump() + "\n");
         }
     });

@@ -20,7 +20,7 @@ public:
     explicit RayMarchMethod(const MethodContext& c)
         : marcher_(c.terrain, env_),
           lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors, c.sun_shadow),
-          water_(c.terrain),
+          water_(c.terrain, c.sun_shadow),
           surface_(c.settings.raycast.surface) {
         marcher_.set_imagery(c.terrain.imagery());
     }

@@ -20,7 +20,7 @@ public:
     explicit VoxelLiteralMethod(const MethodContext& c)
         : terrain_(c.terrain),
           lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors, c.sun_shadow),
-          water_(c.terrain),
+          water_(c.terrain, c.sun_shadow),
           options_(c.settings.raycast) {
         if (options_.lod) throw Error("distance LOD", "voxel-literal has none (it is Algorithm 1 as printed)");
     }

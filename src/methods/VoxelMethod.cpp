@@ -22,7 +22,7 @@ public:
     explicit VoxelMethod(const MethodContext& c)
         : caster_(c.terrain),
           lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors, c.sun_shadow),
-          water_(c.terrain),
+          water_(c.terrain, c.sun_shadow),
           options_(c.settings.raycast) {
         // Imagery finer than the samples: the cast paints light, the imagery the albedo.
         caster_.set_imagery(c.terrain.imagery());

@@ -42,8 +42,9 @@ constexpr int kPyramidLevels = 31;
 
 } // namespace
 
-WaterPass::WaterPass(const Terrain& terrain)
-    : terrain_(terrain), top_(terrain.max_height()), pyramid_(terrain, kPyramidLevels) {}
+WaterPass::WaterPass(const Terrain& terrain, SharedSunShadow* sun_shadow)
+    : terrain_(terrain), top_(terrain.max_height()), albedo_lighting_(terrain, LightOutput::Colors, sun_shadow),
+      pyramid_(terrain, kPyramidLevels) {}
 
 void WaterPass::set_colors(const std::vector<Rgb8>* colors, const Environment& env) {
     colors_ = terrain_.imagery() ? albedo_lighting_.colors(env) : colors;

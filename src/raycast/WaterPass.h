@@ -48,7 +48,9 @@ class WaterPass {
 public:
     // Keeps a reference to terrain (it must outlive this object) and builds
     // its max-height pyramid (the terrain's heights must not change after).
-    explicit WaterPass(const Terrain& terrain);
+    // `sun_shadow` (may be null; must outlive this object): the sweep the
+    // lighting over imagery shares with the caster's (TerrainLighting).
+    explicit WaterPass(const Terrain& terrain, SharedSunShadow* sun_shadow = nullptr);
     // The sample colors the reflections and the bottom show: `colors` as the
     // caster paints them (sun-lit; null: the terrain's; must outlive their
     // use), except over imagery finer than the samples, whose caster paints
@@ -72,7 +74,7 @@ private:
     const Terrain& terrain_;
     const double top_; // Terrain::max_height(), which reads every sample
     const std::vector<Rgb8>* colors_ = nullptr;
-    TerrainLighting albedo_lighting_{terrain_}; // used over imagery only
+    TerrainLighting albedo_lighting_; // used over imagery only
     HeightPyramid pyramid_;
     bool skipping_ = true;
 };

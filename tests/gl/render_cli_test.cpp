@@ -125,6 +125,22 @@ TEST(RenderVoxelCli, TimeOfDaySetsTheSun) {
     EXPECT_EQ(night.err, "overflight: --time: warning: the sun is at or below the horizon at 22:15: ambient light only\n");
 }
 
+// The method's lighting, its water and the compositor's shadow ceiling share
+// one horizon sweep for the run's sun, as in `fly`.
+TEST(RenderCli, OneSunSweepPerRender) {
+    ScratchDir dir;
+    for (const char* method : {"voxel", "mesh"}) {
+        const std::string base = std::string("render demo --demo-size 65 --size 32x16 --stats --method ") + method +
+                                 " -o '" + dir / (std::string(method) + ".png") + "'";
+        const RunResult lit = run_overflight(base + " --shadows --water --sun 250,25");
+        ASSERT_EQ(lit.exit_code, 0) << lit.err;
+        EXPECT_EQ(nlohmann::json::parse(lit.out)["sun_sweeps"], 1) << method;
+        const RunResult plain = run_overflight(base);
+        ASSERT_EQ(plain.exit_code, 0) << plain.err;
+        EXPECT_EQ(nlohmann::json::parse(plain.out)["sun_sweeps"], 0) << method;
+    }
+}
+
 TEST(RenderVoxelCli, LiteralNeedsShear) {
     ScratchDir dir;
     const RunResult r = run_overflight("render demo --demo-size 33 -o '" + dir / "x.png" +
