@@ -121,6 +121,12 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
                             std::llround(sz * kFixedOne), Footprint::Bilinear);
     int next_test = k0, j_at_test = 0;
     long long skipped = 0;
+    // Uneven slices (LOD, near refinement) skip runs too, coarse then fine
+    // as cast_blocks does, each bounded from the box of the samples it reads
+    // (lod_run_top). coarse_from: the first slice where a coarse run may
+    // start (a coarse run that failed its test is cast as fine runs).
+    const bool skip_uneven = kVarying && f.skip_runs;
+    int coarse_from = k0;
     // The sample at slice k's position (gx, gz) on `level`: its height and the
     // index of its color.
     const auto sample = [&](double x, double z, int level, float& h) -> std::size_t {
@@ -144,8 +150,70 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
         h = float(heights[i]);
         return i;
     };
+    // The highest sample that slices [k, e] of this column can read: their
+    // positions lie on the column's line in the order of their view depth,
+    // so the samples they round to (nearest, or the four around a bilinear
+    // position) lie in the box of the first and last position's, widened to
+    // the cells of the run's coarsest level (levels never decrease along the
+    // column). 65535 (no bound) where a bilinear position may extrapolate
+    // (off the grid's inner area).
+    const auto lod_run_top = [&](int e) -> float {
+        const double xa = eye_gx + slice_d[std::size_t(k)] * ux, za = eye_gz + slice_d[std::size_t(k)] * uz;
+        const double xb = eye_gx + slice_d[std::size_t(e)] * ux, zb = eye_gz + slice_d[std::size_t(e)] * uz;
+        const double xl = std::min(xa, xb), xh = std::max(xa, xb), zl = std::min(za, zb), zh = std::max(za, zb);
+        int x0, x1, z0, z1;
+        if (kBilinear && f.slices.level[std::size_t(k)] == 0) {
+            if (xl < 0 || zl < 0 || xh > cols - 1 || zh > t.terrain.rows() - 1) return 65535.0f;
+            x0 = int(xl);
+            z0 = int(zl);
+            x1 = std::min(int(xh) + 1, cols - 1);
+            z1 = std::min(int(zh) + 1, t.terrain.rows() - 1);
+        } else {
+            x0 = int(xl + 0.5);
+            z0 = int(zl + 0.5);
+            x1 = int(xh + 0.5);
+            z1 = int(zh + 0.5);
+        }
+        const int L = f.slices.level[std::size_t(e)], cell = (1 << L) - 1;
+        x0 = std::max(x0, 0) & ~cell;
+        z0 = std::max(z0, 0) & ~cell;
+        x1 = std::min(x1 | cell, cols - 1);
+        z1 = std::min(z1 | cell, t.terrain.rows() - 1);
+        return float(box_max_height(t.max_pyramid, x0, x1, z0, z1));
+    };
+    // Skips the n slices from k when none of them can rise above the
+    // horizon: k becomes the run's last slice, which stands as the previous
+    // sample of the next one (FrontFace.h).
+    const auto skip_uneven_run = [&](int n) -> bool {
+        const int e = k + n - 1;
+        if (e >= k1 || !run_below(ma, mb, k, n, lod_run_top(e), mj)) return false;
+        prev_x = eye_gx + slice_d[std::size_t(e)] * ux;
+        prev_z = eye_gz + slice_d[std::size_t(e)] * uz;
+        prev_level = f.slices.level[std::size_t(e)];
+        if (other) prev_ci = sample(prev_x, prev_z, prev_level, prev_h);
+        skipped += n;
+        k = e;
+        return true;
+    };
     for (; k < k1; ++k) {
         if (smax[k] <= mj) break;
+        if (skip_uneven && k == next_test) {
+            const bool hot = j != j_at_test; // the last run painted: cast the next one without testing
+            j_at_test = j;
+            next_test = k + kRunFine;
+            if (!hot && k >= coarse_from) {
+                if (skip_uneven_run(kRunCoarse)) {
+                    next_test = k + 1;
+                    coarse_from = k + 1;
+                    continue;
+                }
+                coarse_from = k + kRunCoarse;
+            }
+            if (!hot && skip_uneven_run(kRunFine)) {
+                next_test = k + 1;
+                continue;
+            }
+        }
         if (kSkip && k == next_test) {
             const bool hot = j != j_at_test; // the last run painted: cast the next one without testing
             j_at_test = j;
