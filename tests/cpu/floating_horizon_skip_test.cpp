@@ -244,6 +244,24 @@ TEST(FloatingHorizonRunSkipping, ReadsFewerSamples) {
         << with.samples_visited << " vs " << without.samples_visited;
 }
 
+// With run skipping on its levels the distance LOD reads fewer samples than
+// the exact cast (it used to read more: its uneven slices were all cast).
+// Not a time; on this view 9 % fewer.
+TEST(FloatingHorizonRunSkipping, LodReadsFewerSamplesThanTheExactCast) {
+    const DataSet ds = make_demo_island({257});
+    FloatingHorizon fh(ds.terrain);
+    RaycastOptions lod;
+    lod.lod = true;
+    lod.lod_pixels = 0.1;
+    ColorImage c;
+    DepthImage d;
+    const Camera cam = test::across_terrain(ds.terrain, 0, -12, Projection::Shear);
+    RaycastStats exact, coarse;
+    fh.render(cam, ds.environment, {}, c, d, &exact);
+    fh.render(cam, ds.environment, lod, c, d, &coarse);
+    EXPECT_LT(coarse.samples_visited, exact.samples_visited) << coarse.samples_visited << " vs " << exact.samples_visited;
+}
+
 // The block cast compiled for x86-64-v3 (CastKernel) paints what the portable
 // one paints, bit for bit, in every mode that reaches it. Views large enough
 // that one rounding done differently (an FMA) shows.
