@@ -80,12 +80,14 @@ struct BlockRay {
 // between the previous slice's sample and this one, the rows below the point
 // where the mesh's light changes take this sample's color under the previous
 // one's light (FrontFace.h). This is the general case (bilinear surface, LOD and near
-// refinement); cast_blocks is the papers' case.
+// refinement); cast_blocks is the papers' case. The column starts at slice
+// k_from (at least its first) with the horizon at row j_from: where
+// cast_blocks left it after the LOD's evenly spaced slices.
 template <bool kBilinear, bool kVarying>
 int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* color, std::uint32_t* slice,
-                std::ptrdiff_t stride, long long& visited) {
+                std::ptrdiff_t stride, long long& visited, int k_from = 0, int j_from = 0) {
     const std::vector<double>& slice_d = f.slices.d;
-    const int k0 = f.columns.k0[std::size_t(c)], k1 = f.columns.k1[std::size_t(c)];
+    const int k0 = std::max(f.columns.k0[std::size_t(c)], k_from), k1 = f.columns.k1[std::size_t(c)];
     const double ux = f.columns.ux[std::size_t(c)], uz = f.columns.uz[std::size_t(c)];
     const int cols = t.terrain.cols();
     const std::uint16_t* heights = t.terrain.heights().data();
@@ -103,8 +105,8 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
     std::size_t prev_ci = 0;
     float prev_h = 0;
     int prev_level = -1;
-    int j = 0;
-    float mj = rows[0];
+    int j = j_from;
+    float mj = rows[j];
     int k = k0;
     // Incremental stepping (line 6 of Algorithm 1) in double: 2^-52 per step
     // cannot drift a sample into the next cell over any far plane.
@@ -119,8 +121,14 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
     constexpr bool kSkip = kBilinear && !kVarying;
     const SliceRunBound run(t.max_pyramid, kSkip && f.skip_runs ? kRunFine : 0, std::llround(sx * kFixedOne),
                             std::llround(sz * kFixedOne), Footprint::Bilinear);
-    int next_test = k0, j_at_test = 0;
+    int next_test = k0, j_at_test = j_from;
     long long skipped = 0;
+    // Uneven slices (LOD, near refinement) skip runs too, coarse then fine
+    // as cast_blocks does, each bounded from the box of the samples it reads
+    // (lod_run_top). coarse_from: the first slice where a coarse run may
+    // start (a coarse run that failed its test is cast as fine runs).
+    const bool skip_uneven = kVarying && f.skip_runs;
+    int coarse_from = k0;
     // The sample at slice k's position (gx, gz) on `level`: its height and the
     // index of its color.
     const auto sample = [&](double x, double z, int level, float& h) -> std::size_t {
@@ -144,8 +152,76 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
         h = float(heights[i]);
         return i;
     };
+    if (kVarying && k0 > f.columns.k0[std::size_t(c)] && k0 < k1) { // the previous slice's sample
+        prev_x = eye_gx + slice_d[std::size_t(k0) - 1] * ux;
+        prev_z = eye_gz + slice_d[std::size_t(k0) - 1] * uz;
+        prev_level = f.slices.level[std::size_t(k0) - 1];
+        prev_ci = sample(prev_x, prev_z, prev_level, prev_h);
+    }
+    // The highest sample that slices [k, e] of this column can read: their
+    // positions lie on the column's line in the order of their view depth,
+    // so the samples they round to (nearest, or the four around a bilinear
+    // position) lie in the box of the first and last position's, widened to
+    // the cells of the run's coarsest level (levels never decrease along the
+    // column). 65535 (no bound) where a bilinear position may extrapolate
+    // (off the grid's inner area).
+    const auto lod_run_top = [&](int e) -> float {
+        const double xa = eye_gx + slice_d[std::size_t(k)] * ux, za = eye_gz + slice_d[std::size_t(k)] * uz;
+        const double xb = eye_gx + slice_d[std::size_t(e)] * ux, zb = eye_gz + slice_d[std::size_t(e)] * uz;
+        const double xl = std::min(xa, xb), xh = std::max(xa, xb), zl = std::min(za, zb), zh = std::max(za, zb);
+        int x0, x1, z0, z1;
+        if (kBilinear && f.slices.level[std::size_t(k)] == 0) {
+            if (xl < 0 || zl < 0 || xh > cols - 1 || zh > t.terrain.rows() - 1) return 65535.0f;
+            x0 = int(xl);
+            z0 = int(zl);
+            x1 = std::min(int(xh) + 1, cols - 1);
+            z1 = std::min(int(zh) + 1, t.terrain.rows() - 1);
+        } else {
+            x0 = int(xl + 0.5);
+            z0 = int(zl + 0.5);
+            x1 = int(xh + 0.5);
+            z1 = int(zh + 0.5);
+        }
+        const int L = f.slices.level[std::size_t(e)], cell = (1 << L) - 1;
+        x0 = std::max(x0, 0) & ~cell;
+        z0 = std::max(z0, 0) & ~cell;
+        x1 = std::min(x1 | cell, cols - 1);
+        z1 = std::min(z1 | cell, t.terrain.rows() - 1);
+        return float(box_max_height(t.max_pyramid, x0, x1, z0, z1));
+    };
+    // Skips the n slices from k when none of them can rise above the
+    // horizon: k becomes the run's last slice, which stands as the previous
+    // sample of the next one (FrontFace.h).
+    const auto skip_uneven_run = [&](int n) -> bool {
+        const int e = k + n - 1;
+        if (e >= k1 || !run_below(ma, mb, k, n, lod_run_top(e), mj)) return false;
+        prev_x = eye_gx + slice_d[std::size_t(e)] * ux;
+        prev_z = eye_gz + slice_d[std::size_t(e)] * uz;
+        prev_level = f.slices.level[std::size_t(e)];
+        if (other) prev_ci = sample(prev_x, prev_z, prev_level, prev_h);
+        skipped += n;
+        k = e;
+        return true;
+    };
     for (; k < k1; ++k) {
         if (smax[k] <= mj) break;
+        if (skip_uneven && k == next_test) {
+            const bool hot = j != j_at_test; // the last run painted: cast the next one without testing
+            j_at_test = j;
+            next_test = k + kRunFine;
+            if (!hot && k >= coarse_from) {
+                if (skip_uneven_run(kRunCoarse)) {
+                    next_test = k + 1;
+                    coarse_from = k + 1;
+                    continue;
+                }
+                coarse_from = k + kRunCoarse;
+            }
+            if (!hot && skip_uneven_run(kRunFine)) {
+                next_test = k + 1;
+                continue;
+            }
+        }
         if (kSkip && k == next_test) {
             const bool hot = j != j_at_test; // the last run painted: cast the next one without testing
             j_at_test = j;
@@ -248,7 +324,7 @@ struct BlockCast {
 
     [[gnu::always_inline]] BlockCast(const CastTerrain& t, const CastFrame& frame, int c0, int c1,
                                      std::uint32_t* out_color, std::uint32_t* out_slice, int* out_jend,
-                                     std::ptrdiff_t out_col_stride)
+                                     std::ptrdiff_t out_col_stride, int k_end)
         : color(out_color), slice(out_slice), jend(out_jend), col_stride(out_col_stride),
           cols(std::size_t(t.terrain.cols())), heights(t.terrain.heights().data()), colors(t.colors.data()),
           ma(frame.slopes.a.data()), mb(frame.slopes.b.data()), smax(frame.slopes.smax.data()),
@@ -260,7 +336,7 @@ struct BlockCast {
         const double step = slice_d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
         for (int c = c0; c < c1; ++c) {
             const std::size_t ic = std::size_t(c);
-            const int k0 = cc.k0[ic], k1 = cc.k1[ic];
+            const int k0 = cc.k0[ic], k1 = std::min(cc.k1[ic], k_end);
             jend[c - c0] = 0;
             if (k0 >= k1 || nrows == 0) continue;
             BlockRay& r = rays[c - c0];
@@ -490,15 +566,18 @@ struct BlockCast {
 //   cast is compiled without it, so the unshadowed frame pays nothing.
 // kStride: row stride of the output; kEvenRows: the rows are evenly spaced in
 // slope (shear) and the output has kPaintRows rows of padding.
+// k_end: the cast stops before slice k_end (f.slices.even: the slices one
+// cell apart).
 template <std::ptrdiff_t kStride, bool kEvenRows>
 [[gnu::always_inline]] inline long long cast_blocks(const CastTerrain& t, const CastFrame& f, int c0, int c1,
                                                     std::uint32_t* color, std::uint32_t* slice, int* jend,
                                                     std::ptrdiff_t col_stride) {
+    const int k_end = f.slices.even;
     if (t.other_colors) {
-        BlockCast<kStride, kEvenRows, true> block(t, f, c0, c1, color, slice, jend, col_stride);
+        BlockCast<kStride, kEvenRows, true> block(t, f, c0, c1, color, slice, jend, col_stride, k_end);
         return block.run();
     }
-    BlockCast<kStride, kEvenRows, false> block(t, f, c0, c1, color, slice, jend, col_stride);
+    BlockCast<kStride, kEvenRows, false> block(t, f, c0, c1, color, slice, jend, col_stride, k_end);
     return block.run();
 }
 
@@ -508,21 +587,29 @@ template <std::ptrdiff_t kStride, bool kEvenRows>
                                                           std::ptrdiff_t row_stride) {
     const bool bil = surface == SurfaceModel::Bilinear;
     const bool uniform = f.slices.uniform;
-    if (uniform && !bil) {
-        if (row_stride == kBlock && f.rows.even)
-            return cast_blocks<kBlock, true>(t, f, c0, c1, color, slice, jend, col_stride);
-        if (row_stride == kBlock) return cast_blocks<kBlock, false>(t, f, c0, c1, color, slice, jend, col_stride);
-        if (row_stride == 1) return cast_blocks<1, false>(t, f, c0, c1, color, slice, jend, col_stride);
-        throw std::logic_error("FloatingHorizon: unsupported scratch layout");
-    }
     long long visited = 0;
+    // `blocks`: the evenly spaced slices (all of them, or the LOD's
+    // level-0 part) as cast_blocks; the LOD's coarser levels continue each
+    // column from where it left off.
+    if (!bil && f.slices.even > 0) {
+        if (row_stride == kBlock && f.rows.even)
+            visited = cast_blocks<kBlock, true>(t, f, c0, c1, color, slice, jend, col_stride);
+        else if (row_stride == kBlock) visited = cast_blocks<kBlock, false>(t, f, c0, c1, color, slice, jend, col_stride);
+        else if (row_stride == 1) visited = cast_blocks<1, false>(t, f, c0, c1, color, slice, jend, col_stride);
+        else throw std::logic_error("FloatingHorizon: unsupported scratch layout");
+        if (uniform) return visited;
+    }
+    const int k_from = bil ? 0 : f.slices.even;
     for (int c = c0; c < c1; ++c) {
         std::uint32_t* cc = color + std::ptrdiff_t(c - c0) * col_stride;
         std::uint32_t* cs = slice + std::ptrdiff_t(c - c0) * col_stride;
+        const int j_from = k_from > 0 ? jend[c - c0] : 0;
         int j;
         if (!uniform)
             j = bil ? cast_column<true, true>(t, f, c, cc, cs, row_stride, visited)
-                    : cast_column<false, true>(t, f, c, cc, cs, row_stride, visited);
+                    : j_from == f.rows.count ? j_from
+                                             : cast_column<false, true>(t, f, c, cc, cs, row_stride, visited, k_from,
+                                                                        j_from);
         else j = cast_column<true, false>(t, f, c, cc, cs, row_stride, visited);
         jend[c - c0] = j;
     }

@@ -43,7 +43,9 @@ void place_slices(const SlicePlacement& p, Slices& out) {
         out.d.resize(std::size_t(std::max(count, 1LL)));
         for (std::size_t k = 0; k < out.d.size(); ++k) out.d[k] = p.d_first + hs * double(k);
         out.level.assign(out.d.size(), 0);
+        out.even = int(out.d.size());
     } else {
+        out.even = 0;
         const double lod_cells = p.fp_h * hs * std::max(p.lod_pixels, 1e-3);
         const double near_px = p.near_step_pixels;
         for (double d = p.d_first; d <= p.d_last + 1e-9;) {
@@ -53,7 +55,10 @@ void place_slices(const SlicePlacement& p, Slices& out) {
             out.level.push_back(std::uint8_t(L));
             double step = hs * double(1 << L);
             if (near_px > 0.0) step = std::min(step, std::max(hs / 8.0, near_px * d / p.fp_h));
-            d += step;
+            if (L == 0 && step == hs && out.even + 1 == int(out.d.size())) {
+                ++out.even;
+                d = p.d_first + hs * double(out.even); // as the uniform slices are placed
+            } else d += step;
         }
     }
     const std::size_t n = out.d.size();

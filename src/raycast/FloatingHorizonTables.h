@@ -48,6 +48,10 @@ struct Slices {
     std::vector<std::uint8_t> level; // pyramid level sampled at slice k (0: the terrain)
     bool uniform = true;             // one cell apart: d[k] = d[0] + step k, df[k] = float(d[0]) + float(step) float(k)
     double step = 0;                 // uniform: h_scale
+    // The first `even` slices are one cell apart, at d[0] + h_scale k as when
+    // uniform (all of them when uniform; the LOD's level-0 part, without near
+    // refinement), so that the cast treats them as the papers' slices.
+    int even = 0;
 };
 
 // Slices one cell apart (sec. 5.2: one step of h_scale along F is the

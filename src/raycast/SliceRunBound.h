@@ -16,6 +16,7 @@
 #include "raycast/HeightPyramid.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 
@@ -26,6 +27,20 @@ enum class Footprint {
     Nearest,  // `blocks`: the nearest sample
     Bilinear, // `bilinear`: the four around it
 };
+
+// The max height over the samples [x0, x1] x [z0, z1] (x0 <= x1, z0 <= z1,
+// on the grid), read from the coarsest level needed to cover the box with at
+// most 2 x 2 aligned cells; 65535 (no bound) when the pyramid has no level
+// that coarse. For runs whose positions are not evenly stepped (the distance
+// LOD's slices), where the caller knows the box of the samples read.
+inline std::uint16_t box_max_height(const HeightPyramid& pyramid, int x0, int x1, int z0, int z1) {
+    const int L = std::max(1, int(std::bit_width(unsigned(std::max(x1 - x0, z1 - z0)))));
+    if (L > pyramid.levels()) return 65535;
+    const HeightPyramid::Level& lv = pyramid.level(L);
+    const std::uint16_t* r0 = lv.heights.data() + std::size_t(z0 >> L) * std::size_t(lv.cols);
+    const std::uint16_t* r1 = lv.heights.data() + std::size_t(z1 >> L) * std::size_t(lv.cols);
+    return std::max(std::max(r0[x0 >> L], r0[x1 >> L]), std::max(r1[x0 >> L], r1[x1 >> L]));
+}
 
 class SliceRunBound {
 public:

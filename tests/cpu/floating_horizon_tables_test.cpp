@@ -75,6 +75,7 @@ TEST(FloatingHorizonTables, SlicesOneCellApart) {
     EXPECT_EQ(s.d, (std::vector<double>{1, 11, 21, 31}));
     EXPECT_EQ(s.df, (std::vector<float>{1, 11, 21, 31}));
     EXPECT_EQ(s.level, (std::vector<std::uint8_t>{0, 0, 0, 0}));
+    EXPECT_EQ(s.even, 4);
 }
 
 // Near refinement: a step spans at most near_step_pixels = 1 pixel, d / fp_h
@@ -90,6 +91,7 @@ TEST(FloatingHorizonTables, SlicesNarrowNearTheEye) {
     EXPECT_EQ(s.d, (std::vector<double>{1, 2.25, 3.5, 5.25, 7.875, 11.8125, 17.71875, 26.578125}));
     EXPECT_EQ(s.df[7], 26.578125f);
     EXPECT_EQ(s.level, std::vector<std::uint8_t>(8, 0));
+    EXPECT_EQ(s.even, 0); // the first step is finer than a cell
 }
 
 // Distance LOD: a pixel spans lod_pixels * 2^L cells at d = fp_h h_scale
@@ -106,6 +108,16 @@ TEST(FloatingHorizonTables, SlicesStepThroughLodLevels) {
     EXPECT_FALSE(s.uniform);
     EXPECT_EQ(s.d, (std::vector<double>{1, 11, 31}));
     EXPECT_EQ(s.level, (std::vector<std::uint8_t>{0, 1, 2}));
+    EXPECT_EQ(s.even, 1); // slice 0 steps one cell; slice 1 (level 1) two
+    // A longer level 0 (fp_h = 10: level 1 from d = 100): its slices one cell
+    // apart at d_first + h_scale k, as the uniform slices, the block cast's.
+    p.fp_h = 10;
+    p.d_last = 250;
+    place_slices(p, s);
+    EXPECT_EQ(s.even, 10);
+    for (int k = 0; k < 10; ++k) EXPECT_EQ(s.d[std::size_t(k)], 1 + 10.0 * k) << k;
+    EXPECT_EQ(s.level[9], 0);
+    EXPECT_EQ(s.level[10], 1);
 }
 
 // a_k = v_scale / d_k, b_k = (y_offset - eye_y) / d_k; the highest sample
