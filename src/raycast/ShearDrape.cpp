@@ -56,9 +56,11 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
     const __m256i rb_mask = _mm256_set1_epi32(0x00FF00FF), byte = _mm256_set1_epi32(0xFF);
     const __m256i round = _mm256_set1_epi32(0x00400040), max_rb = _mm256_set1_epi32(0x00FF00FF);
     __m256 m_top = zero_f;
-    __m256i prev = _mm256_set1_epi32(-1);
+    __m256i prev = _mm256_set1_epi32(-1); // no slice: the first row gathers
     // What the lanes' slices give, gathered again only on a row where some
     // lane's slice changed: along most rows every lane stays in its run.
+    // (An unpainted lane's stale top and values are never used: its top
+    // painted row is a top row, whatever its slice.)
     __m256 dk = zero_f, d_prev = zero_f, sl = zero_f;
     for (int j = jtop - 1; j >= 0; --j) {
         const float mj = f.row_m[j];
