@@ -29,7 +29,8 @@
 // narrow bands in parallel (oneTBB), each band sweeping one sun line of the
 // next. A band keeps what it touches of a grid line in the first-level cache
 // and reads each grid line's heights once into a contiguous buffer, so that
-// its inner loops vectorize whichever axis the sun lines cross.
+// its inner loops vectorize whichever axis the sun lines cross (compiled for
+// AVX2 as well and picked at run time; no FMA, so the same bits).
 #include "core/Terrain.h"
 
 #include <glm/vec3.hpp>

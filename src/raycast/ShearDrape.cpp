@@ -14,14 +14,17 @@ namespace {
 
 #if OVERFLIGHT_DRAPE_AVX2
 // Entry lvl of a 16-entry table (ImageryTexels::LevelLanes) per lane: the
-// lower or upper 8 permuted, chosen by upper (lvl > 7).
-__attribute__((target("avx2"))) inline __m256i pick(const int* table, __m256i lvl, __m256i upper) {
+// lower or upper 8 permuted, chosen by upper (lvl > 7); the lower alone
+// while no lane is upper (any_upper false), as on most rows.
+__attribute__((target("avx2"))) inline __m256i pick(const int* table, __m256i lvl, __m256i upper, bool any_upper) {
     const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(table)), lvl);
+    if (!any_upper) return lo;
     const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(table + 8)), lvl);
     return _mm256_blendv_epi8(lo, hi, upper);
 }
-__attribute__((target("avx2"))) inline __m256 pick(const float* table, __m256i lvl, __m256i upper) {
+__attribute__((target("avx2"))) inline __m256 pick(const float* table, __m256i lvl, __m256i upper, bool any_upper) {
     const __m256 lo = _mm256_permutevar8x32_ps(_mm256_load_ps(table), lvl);
+    if (!any_upper) return lo;
     const __m256 hi = _mm256_permutevar8x32_ps(_mm256_load_ps(table + 8), lvl);
     return _mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(upper));
 }
@@ -53,7 +56,12 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
     const __m256i rb_mask = _mm256_set1_epi32(0x00FF00FF), byte = _mm256_set1_epi32(0xFF);
     const __m256i round = _mm256_set1_epi32(0x00400040), max_rb = _mm256_set1_epi32(0x00FF00FF);
     __m256 m_top = zero_f;
-    __m256i prev = zero;
+    __m256i prev = _mm256_set1_epi32(-1); // no slice: the first row gathers
+    // What the lanes' slices give, gathered again only on a row where some
+    // lane's slice changed: along most rows every lane stays in its run.
+    // (An unpainted lane's stale top and values are never used: its top
+    // painted row is a top row, whatever its slice.)
+    __m256 dk = zero_f, d_prev = zero_f, sl = zero_f;
     for (int j = jtop - 1; j >= 0; --j) {
         const float mj = f.row_m[j];
         const __m256 m = _mm256_set1_ps(mj);
@@ -62,17 +70,21 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
         const __m256i k = _mm256_and_si256(
             _mm256_loadu_si256(reinterpret_cast<const __m256i*>(slice + std::size_t(j) * kShearBlock + i)), painted);
         // A run's top row: the column's top painted row, or the row below a new slice.
+        const __m256i same = _mm256_cmpeq_epi32(k, prev);
         const __m256i top = _mm256_or_si256(_mm256_cmpeq_epi32(jendv, _mm256_set1_epi32(j + 1)),
-                                            _mm256_xor_si256(_mm256_cmpeq_epi32(k, prev), _mm256_set1_epi32(-1)));
+                                            _mm256_xor_si256(same, _mm256_set1_epi32(-1)));
         m_top = _mm256_blendv_ps(m_top, m, _mm256_castsi256_ps(top));
         prev = k;
-        const __m256 dk = _mm256_i32gather_ps(f.slice_d, k, 4);
+        if (_mm256_movemask_epi8(same) != -1) {
+            dk = _mm256_i32gather_ps(f.slice_d, k, 4);
+            d_prev = _mm256_blendv_ps(_mm256_i32gather_ps(f.slice_d, _mm256_max_epi32(_mm256_sub_epi32(k, one), zero), 4),
+                                      d_before, _mm256_castsi256_ps(_mm256_cmpeq_epi32(k, zero)));
+            sl = _mm256_i32gather_ps(slog, k, 4);
+        }
         __m256 d = dk;
         if (mj < 0.0f) {
             // Rays looking down meet the sample's height in front of slice k,
             // clamped to the cell [d_{k-1}, d_k]; others hit its face at d_k.
-            const __m256 d_prev = _mm256_blendv_ps(_mm256_i32gather_ps(f.slice_d, _mm256_max_epi32(_mm256_sub_epi32(k, one), zero), 4),
-                                                   d_before, _mm256_castsi256_ps(_mm256_cmpeq_epi32(k, zero)));
             const __m256 v = _mm256_mul_ps(dk, _mm256_div_ps(m_top, m));
             const __m256 clamped = _mm256_min_ps(_mm256_max_ps(v, d_prev), dk);
             d = _mm256_blendv_ps(dk, clamped, _mm256_cmp_ps(m_top, zero_f, _CMP_LT_OQ));
@@ -80,28 +92,30 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
         const __m256 x = _mm256_add_ps(eye_x, _mm256_mul_ps(d, dx));
         const __m256 z = _mm256_add_ps(eye_z, _mm256_mul_ps(d, dz));
         // ImageryTexels::level: l < 1 truncates to at most 0.
-        const __m256 l = _mm256_add_ps(_mm256_add_ps(_mm256_i32gather_ps(slog, k, 4), _mm256_set1_ps(rlog[j])), half);
+        const __m256 l = _mm256_add_ps(_mm256_add_ps(sl, _mm256_set1_ps(rlog[j])), half);
         const __m256i lvl = _mm256_min_epi32(_mm256_max_epi32(_mm256_cvttps_epi32(l), zero), last);
         // ImageryTexels::at.
         const __m256i upper = _mm256_cmpgt_epi32(lvl, seven);
-        const __m256i w = pick(lv.w, lvl, upper);
-        const __m256i h = pick(lv.h, lvl, upper);
+        const bool any_upper = !_mm256_testz_si256(upper, upper);
+        const __m256i w = pick(lv.w, lvl, upper, any_upper);
+        const __m256i h = pick(lv.h, lvl, upper, any_upper);
         const __m256i col = _mm256_min_epi32(
-            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(x, x0), pick(lv.inv_x, lvl, upper))), zero),
+            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(x, x0), pick(lv.inv_x, lvl, upper, any_upper))), zero),
             _mm256_sub_epi32(w, one));
         const __m256i row = _mm256_min_epi32(
-            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(z, z0), pick(lv.inv_z, lvl, upper))), zero),
+            _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(z, z0), pick(lv.inv_z, lvl, upper, any_upper))), zero),
             _mm256_sub_epi32(h, one));
         // ImageryTexels::tiled_index, plus the level's first texel.
         const __m256i page = _mm256_add_epi32(
-            _mm256_mullo_epi32(_mm256_srli_epi32(row, 5), pick(lv.tiles_x, lvl, upper)),
+            _mm256_mullo_epi32(_mm256_srli_epi32(row, 5), pick(lv.tiles_x, lvl, upper, any_upper)),
             _mm256_srli_epi32(col, 5));
         const __m256i in_page = _mm256_or_si256(
             _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(row, c28), 5), _mm256_slli_epi32(_mm256_and_si256(col, c28), 2)),
             _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(row, c3), 2), _mm256_and_si256(col, c3)));
-        const __m256i idx = _mm256_add_epi32(pick(lv.first, lvl, upper),
+        const __m256i idx = _mm256_add_epi32(pick(lv.first, lvl, upper, any_upper),
                                              _mm256_or_si256(_mm256_slli_epi32(page, 10), in_page));
-        const __m256i albedo = _mm256_i32gather_epi32(texels, idx, 4);
+        // Unpainted lanes fetch nothing (their pixels stay as they are).
+        const __m256i albedo = _mm256_mask_i32gather_epi32(zero, texels, idx, painted, 4);
         // modulate_light.
         std::uint32_t* out = color + std::size_t(j) * kShearBlock + i;
         const __m256i light = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(out));
