@@ -3,6 +3,7 @@
 
 #include "core/Error.h"
 #include "core/TerrainDecimation.h"
+#include "core/WebTerrainFormat.h"
 #include "gl/ObjectGeometry.h"
 #include "io/Files.h"
 
@@ -20,7 +21,9 @@ namespace overflight::app {
 
 namespace {
 
-const char* const kEngineFiles[] = {"overflight_engine.js", "overflight_engine.wasm"};
+// SIMD128 and scalar builds: the page loads the one the browser runs.
+const char* const kEngineFiles[] = {"overflight_engine.js", "overflight_engine.wasm", "overflight_engine_scalar.js",
+                                    "overflight_engine_scalar.wasm"};
 const char* const kShellFiles[] = {"index.html", "overflight.js"};
 
 // SITE without trailing separators, so that "site/" and "site" are one folder.
@@ -37,20 +40,6 @@ void append_bytes(std::vector<std::uint8_t>& out, const void* data, std::size_t 
 
 void pad4(std::vector<std::uint8_t>& out) {
     while (out.size() % 4 != 0) out.push_back(0);
-}
-
-// PROVISIONAL until core/WebTerrainFormat.h lands from the wasm engine's branch.
-std::vector<std::uint8_t> web_terrain_bytes(const DataSet& d) {
-    const Terrain& t = d.terrain;
-    std::vector<std::uint8_t> out;
-    append_bytes(out, "OFTERR01", 8);
-    const std::int32_t size[2] = {t.rows(), t.cols()};
-    append_bytes(out, size, sizeof size);
-    const float scales[3] = {t.h_scale(), t.v_scale(), t.y_offset()};
-    append_bytes(out, scales, sizeof scales);
-    append_bytes(out, t.heights().data(), t.heights().size() * 2);
-    append_bytes(out, t.colors().data(), t.colors().size() * 3);
-    return out;
 }
 
 std::vector<std::uint8_t> object_bytes(const gl::ObjectGeometry& g) {
@@ -165,7 +154,7 @@ WebSiteReport write_web_site(const DataSet& data, const std::string& source, con
 
     const fs::path target = site_path(o.out);
     TempFolder temp(target);
-    const std::vector<std::uint8_t> terrain = web_terrain_bytes(site);
+    const std::vector<std::uint8_t> terrain = encode_web_terrain(site.terrain, site.environment, site.start);
     const std::vector<std::uint8_t> object = object_bytes(objects);
     write_bytes(temp.path() / "terrain.bin", terrain);
     write_bytes(temp.path() / "objects.bin", object);

@@ -6,7 +6,8 @@
 //   index.html, overflight.js      the page and its shell (web/shell/, plain
 //                                  JavaScript: WebGL2 composite, keys, HUD)
 //   overflight_engine.js, .wasm    the core compiled by scripts/build_web.sh
-//                                  (ray caster, hovercraft, chase camera)
+//   overflight_engine_scalar.*     (ray caster, hovercraft, chase camera), with
+//                                  SIMD128 and without
 //   terrain.bin                    the terrain, its colors, environment and
 //                                  the vehicle's start (core/WebTerrainFormat.h,
 //                                  "OFTERR01")
@@ -35,13 +36,13 @@ namespace overflight::app {
 struct WebSiteOptions {
     std::string out;        // SITE: must not exist, or be an empty folder; its parent must exist
     int max_size = 4097;    // samples per side the site's terrain holds at most (decimated beyond)
-    std::string engine_dir; // holds overflight_engine.js and overflight_engine.wasm
+    std::string engine_dir; // holds overflight_engine{,_scalar}.{js,wasm}
     std::string shell_dir;  // holds index.html and overflight.js
 };
 
-// The smallest and largest --max-size: a 2^n+1 side from 65 to 8193
-// (8193^2 samples are 336 MB in the page; the wasm32 heap ends at 4 GB, and
-// the ray caster's pyramids and the browser's copies need their share).
+// The smallest and largest --max-size: 65 to 8193 samples per side (8193^2
+// samples are 336 MB in the page, whose engine's heap ends at 2 GB; the ray
+// caster's tables and the page's own copies need their share).
 inline constexpr int kMinWebSize = 65;
 inline constexpr int kMaxWebSize = 8193;
 

@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
+#include <iterator>
 #include <memory>
 #include <system_error>
 
@@ -22,15 +24,19 @@ namespace {
 // The engine (scripts/build_web.sh) and the page's shell (web/shell/): the
 // folder $OVERFLIGHT_WEB_ENGINE_DIR names for the engine (another web
 // build), a `web` folder next to the `overflight` binary holding them (a
-// copied build), else where this build configured them.
-std::string web_folder(const char* configured, const char* probe, const char* variable = nullptr) {
+// copied build), else the first of the folders this build configured that
+// holds `probe` (the last when none does: its name is in the error).
+std::string web_folder(std::initializer_list<const char*> configured, const char* probe,
+                       const char* variable = nullptr) {
     if (variable)
         if (const char* dir = std::getenv(variable); dir && *dir) return dir;
     std::error_code ec;
     const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (!ec && std::filesystem::is_regular_file(exe.parent_path() / "web" / probe, ec))
         return (exe.parent_path() / "web").string();
-    return configured;
+    for (const char* dir : configured)
+        if (std::filesystem::is_regular_file(std::filesystem::path(dir) / probe, ec)) return dir;
+    return *std::prev(configured.end());
 }
 
 } // namespace
@@ -58,8 +64,9 @@ void add_web_command(CLI::App& app) {
         WebSiteOptions o;
         o.out = args->out;
         o.max_size = args->max_size;
-        o.engine_dir = web_folder(OVERFLIGHT_WEB_ENGINE_DIR, "overflight_engine.wasm", "OVERFLIGHT_WEB_ENGINE_DIR");
-        o.shell_dir = web_folder(OVERFLIGHT_WEB_SHELL_DIR, "overflight.js");
+        o.engine_dir = web_folder({OVERFLIGHT_WEB_BUILD_DIR, OVERFLIGHT_WEB_ENGINE_DIR}, "overflight_engine.wasm",
+                                  "OVERFLIGHT_WEB_ENGINE_DIR");
+        o.shell_dir = web_folder({OVERFLIGHT_WEB_SHELL_DIR}, "overflight.js");
         // A bad SITE, --max-size or a missing engine is refused before the terrain loads.
         check_web_site(o);
         // A raster larger than the page holds is read decimated by GDAL (block means).

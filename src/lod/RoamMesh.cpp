@@ -4,8 +4,8 @@
 #include "lod/RoamMesh.h"
 
 #include "core/Error.h"
+#include "core/Parallel.h"
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <bit>
@@ -71,7 +71,7 @@ RoamMesh::RoamMesh(const Terrain& terrain, const RoamOptions& options) : terrain
     // Inside the terrain its own normals and colors; padding samples (reached
     // only by border-straddling triangles) take the padded copy's.
     attributes_.resize(std::size_t(size_) * std::size_t(size_));
-    tbb::parallel_for(0, size_, [&](int row) {
+    parallel::for_each_index(0, size_, [&](int row) {
         for (int col = 0; col < size_; ++col) {
             const Terrain& src = (row < domain_rows_ && col < domain_cols_) ? terrain : grid();
             const glm::vec3 n = src.sample_normal(row, col);
