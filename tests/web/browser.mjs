@@ -32,7 +32,8 @@ export class Browser {
             `--window-size=${width},${height}`, `--user-data-dir=${profile}`,
             '--remote-debugging-port=0', 'about:blank',
         ];
-        const proc = spawn(CHROMIUM, args, { stdio: ['ignore', 'ignore', 'pipe'] });
+        // Its own process group, so that close() stops its helper processes too.
+        const proc = spawn(CHROMIUM, args, { stdio: ['ignore', 'ignore', 'pipe'], detached: true });
         let log = '';
         const url = await new Promise((resolve, reject) => {
             const timer = setTimeout(() => reject(new Error(`chromium did not start in 60 s:\n${log}`)), 60000);
@@ -108,15 +109,32 @@ export class Browser {
             // Closed already.
         }
         this.ws.close();
-        // The profile is removed once Chromium has stopped writing into it.
+        // The profile is removed once Chromium and its helpers have stopped
+        // writing into it.
+        const group = (signal) => {
+            try {
+                process.kill(-this.proc.pid, signal);
+            } catch {
+                // None left.
+            }
+        };
         if (this.proc.exitCode === null) {
             const exited = new Promise((r) => this.proc.once('exit', r));
-            this.proc.kill();
-            const timer = setTimeout(() => this.proc.kill('SIGKILL'), 10000);
+            group('SIGTERM');
+            const timer = setTimeout(() => group('SIGKILL'), 10000);
             await exited;
             clearTimeout(timer);
         }
-        rmSync(this.profile, { recursive: true, force: true, maxRetries: 3 });
+        group('SIGKILL');
+        for (let attempt = 0; ; ++attempt) {
+            try {
+                rmSync(this.profile, { recursive: true, force: true });
+                break;
+            } catch (e) {
+                if (attempt === 20) throw e;
+                await new Promise((r) => setTimeout(r, 250));
+            }
+        }
     }
 }
 

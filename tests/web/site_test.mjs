@@ -110,11 +110,13 @@ const differs = (a, b, k, tolerance) =>
 
 let browser, server;
 try {
-    // The site: the demo island with its own objects and one red box in
-    // front of the camera below.
+    // The site: the demo island (513 samples: its village, the vehicle start
+    // at about (1571, 3788) facing 141 degrees, lies where this test looks)
+    // with its own objects (houses, the parked vehicle, a water tower, a
+    // transmission line) and one blue box beyond the village.
     const scene = join(scratch, 'scene.toml');
-    writeFileSync(scene, '[[object]]\nkind = "box"\nx = 2560.0\nz = 3900.0\nwidth = 40.0\nheight = 80.0\n' +
-                         'depth = 40.0\nheading = 30.0\ncolor = [200, 40, 40]\n');
+    writeFileSync(scene, '[[object]]\nkind = "box"\nx = 1665.0\nz = 3671.0\nwidth = 20.0\nheight = 30.0\n' +
+                         'depth = 20.0\nheading = 30.0\ncolor = [40, 60, 200]\n');
     const site = join(scratch, 'site');
     const t0 = Date.now();
     overflight('web', ...DEMO, '--scene', scene, '-o', site);
@@ -125,8 +127,8 @@ try {
 
     // The native view, whose camera the page then pins.
     const native = join(scratch, 'native.png'), cameraFile = join(scratch, 'camera.json');
-    overflight('render', ...DEMO, '--scene', scene, '--method', 'voxel', '--size', `${W}x${H}`, '--at', '2560,4700',
-               '--agl', '120', '--heading', '180', '--pitch', '-6', '--save-camera', cameraFile, '-o', native);
+    overflight('render', ...DEMO, '--scene', scene, '--method', 'voxel', '--size', `${W}x${H}`, '--at', '1476,3904',
+               '--agl', '60', '--look-at', '1640,3700', '--save-camera', cameraFile, '-o', native);
     const cam = JSON.parse(readFileSync(cameraFile, 'utf8'));
     const camera = { eye: cam.eye, heading: cam.heading, pitch: cam.pitch, fov: cam.fov, near: cam.near, far: cam.far };
 

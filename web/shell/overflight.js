@@ -66,6 +66,24 @@ function parseObjects(bytes) {
 
 // ---------------------------------------------------------------- the engine
 
+// The smallest module using a SIMD128 instruction (the probe of the
+// wasm-feature-detect project): the browser validates it if it runs SIMD.
+const kSimdProbe = new Uint8Array([0, 97, 115, 109, 1, 0, 0, 0, 1, 5, 1, 96, 0, 1, 123, 3, 2, 1, 0, 10, 10, 1, 8, 0,
+                                   65, 0, 253, 15, 253, 98, 11]);
+
+// The engine's factory (Emscripten, MODULARIZE): the SIMD128 build where the
+// browser has SIMD, else the scalar one; `name` says which.
+function loadEngineScript() {
+    const name = WebAssembly.validate(kSimdProbe) ? 'overflight_engine' : 'overflight_engine_scalar';
+    return new Promise((resolve, reject) => {
+        const script = document.createElement('script');
+        script.src = `${name}.js`;
+        script.onload = () => resolve({ name, factory: OverflightEngine }); // eslint-disable-line no-undef
+        script.onerror = () => reject(new Error(`${name}.js: cannot load it`));
+        document.head.appendChild(script);
+    });
+}
+
 // The C API of the WebAssembly engine (web/WebEngine.h), with views into its
 // heap taken afresh after every call (memory growth may move it).
 class Engine {
@@ -315,6 +333,16 @@ void main() {
 }
 `;
 
+// The composite to the canvas, rows turned over (texture row 0 is the image's top).
+const kPresentFs = `
+uniform highp sampler2D image;
+out vec4 frag;
+void main() {
+    ivec2 size = textureSize(image, 0);
+    frag = vec4(texelFetch(image, ivec2(gl_FragCoord.x, size.y - 1 - int(gl_FragCoord.y)), 0).rgb, 1.0);
+}
+`;
+
 // A triangle mesh (or line list) in GL buffers, attributes as kLitVs reads them.
 class GlMesh {
     constructor(gl, positions, normals, colors, indices) {
@@ -386,9 +414,10 @@ class Renderer {
         if (!gl) throw new Error('this browser has no WebGL2');
         this.gl = gl;
         this.environment = site.environment;
-        this.lit = compile(gl, kLitVs, kShadeGlsl + kLitFs);
-        this.line = compile(gl, kLitVs, kShadeGlsl + kLineFs);
+        this.lit = compile(gl, kShadeGlsl + kLitVs, kShadeGlsl + kLitFs);
+        this.line = compile(gl, kShadeGlsl + kLitVs, kShadeGlsl + kLineFs);
         this.sky = compile(gl, kSkyVs, kShadeGlsl + kSkyFs);
+        this.present = compile(gl, kSkyVs, kPresentFs);
         this.solids = new GlMesh(gl, objects.positions, objects.normals, objects.colors, objects.indices);
         this.lines = new GlMesh(gl, objects.linePoints, null, objects.lineColors, null);
         this.fbo = gl.createFramebuffer();
@@ -458,7 +487,9 @@ class Renderer {
     // The ray caster's frame: its color and depth (rows from the top) loaded
     // as they are, so that the framebuffer holds the image upside down; the
     // objects are drawn upside down to match (clip y negated: pixel centres
-    // mirror onto pixel centres) and the blit turns the whole right way up.
+    // mirror onto pixel centres), and a full-screen pass copies the whole to
+    // the canvas the right way up (a blit instead showed black in Chromium's
+    // SwiftShader when nothing had been drawn into the framebuffer).
     drawCast(engine, view, objects) {
         const gl = this.gl;
         const w = engine.width, h = engine.height;
@@ -466,19 +497,22 @@ class Renderer {
         gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
         gl.bindTexture(gl.TEXTURE_2D, this.color);
         gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.RGB, gl.UNSIGNED_BYTE, engine.color());
+        gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbo);
+        gl.viewport(0, 0, w, h);
         if (objects) {
             // The window depth goes straight into the depth attachment (Szenberg eq. 7).
             gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
             gl.bindTexture(gl.TEXTURE_2D, this.depth);
             gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.DEPTH_COMPONENT, gl.FLOAT, engine.depth());
-            gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbo);
-            gl.viewport(0, 0, w, h);
             this.drawObjects(view, -1);
         }
-        gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.fbo);
-        gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
-        gl.blitFramebuffer(0, 0, w, h, 0, h, w, 0, gl.COLOR_BUFFER_BIT, gl.NEAREST);
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+        gl.disable(gl.DEPTH_TEST);
+        gl.useProgram(this.present.program);
+        gl.activeTexture(gl.TEXTURE0);
+        gl.bindTexture(gl.TEXTURE_2D, this.color);
+        gl.uniform1i(this.present.uniforms.image, 0);
+        gl.drawArrays(gl.TRIANGLES, 0, 3);
     }
 
     // The comparison view: sky, the terrain as a WebGL2 mesh, the objects.
@@ -633,7 +667,7 @@ async function main() {
     const siteResponse = await fetch('site.json');
     if (!siteResponse.ok) throw new Error(`site.json: ${siteResponse.status} ${siteResponse.statusText}`);
     const site = await siteResponse.json();
-    const enginePromise = OverflightEngine();
+    const enginePromise = loadEngineScript().then(async ({ name, factory }) => ({ name, module: await factory() }));
     const [terrainBytes, objectBytes] = await Promise.all([
         fetchBytes(site.terrain.file, site.terrain.bytes, (got, total) => {
             fill.style.width = `${(100 * got) / total}%`;
@@ -642,7 +676,8 @@ async function main() {
         fetchBytes(site.objects.file, site.objects.bytes, () => {}),
     ]);
     status.textContent = 'starting the engine';
-    const engine = new Engine(await enginePromise);
+    const loaded = await enginePromise;
+    const engine = new Engine(loaded.module);
     engine.loadTerrain(terrainBytes);
     const terrain = parseTerrain(terrainBytes);
     const renderer = new Renderer(canvas, { environment: terrain.environment }, parseObjects(objectBytes));
@@ -697,7 +732,7 @@ async function main() {
         const v = engine.vehicle();
         const fog = ['fog off', 'GL_EXP fog', 'atmosphere'][engine.toggles().fog];
         const method = state.view === 'voxel'
-            ? 'voxel (floating horizon, WebAssembly)'
+            ? `voxel (floating horizon, WebAssembly${loaded.name.endsWith('scalar') ? '' : ' SIMD128'})`
             : `mesh (WebGL2, ${mesh.triangles} triangles${mesh.stride > 1 ? `, every ${mesh.stride}th sample` : ''})`;
         hud.textContent = `${state.fps.toFixed(1)} fps  ${method}  ${engine.width}x${engine.height}  ${fog}  ` +
             `x ${v.x.toFixed(1)} z ${v.z.toFixed(1)} y ${v.y.toFixed(1)}  ${v.velocity.toFixed(1)}/s  ` +
