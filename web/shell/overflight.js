@@ -556,7 +556,7 @@ class Renderer {
 // binary triangle tree splits them, gl/TerrainMesh.h), over every
 // `stride`-th sample so that it holds at most kMeshSide samples per side,
 // normals from central differences (core/Terrain.h sample_normal).
-const kMeshSide = 1025;
+const kMeshSide = 513;
 
 class TerrainMeshView {
     constructor(gl, terrain) {
