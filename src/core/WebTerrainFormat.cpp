@@ -1,11 +1,11 @@
 // The web page's terrain file. See WebTerrainFormat.h.
 #include "core/WebTerrainFormat.h"
 
+#include "core/BitCast.h"
 #include "core/Error.h"
 
 #include <glm/vec3.hpp>
 
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -37,8 +37,8 @@ public:
         for (int i = 0; i < 8; ++i) p_[i] = std::uint8_t(v >> (8 * i));
         p_ += 8;
     }
-    void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
-    void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+    void f32(float v) { u32(bit_cast<std::uint32_t>(v)); }
+    void f64(double v) { u64(bit_cast<std::uint64_t>(v)); }
     void vec3(const glm::vec3& v) {
         f32(v.x);
         f32(v.y);
@@ -64,8 +64,8 @@ public:
         p_ += 8;
         return v;
     }
-    float f32() { return std::bit_cast<float>(u32()); }
-    double f64() { return std::bit_cast<double>(u64()); }
+    float f32() { return bit_cast<float>(u32()); }
+    double f64() { return bit_cast<double>(u64()); }
     glm::vec3 vec3() {
         const float x = f32(), y = f32();
         return {x, y, f32()};

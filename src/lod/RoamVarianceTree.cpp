@@ -4,7 +4,6 @@
 #include "core/Error.h"
 #include "core/Parallel.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -36,7 +35,7 @@ struct Builder {
             std::uint16_t c0 = 0, c1 = 0;
             if (level < 8) {
                 parallel::invoke([&] { c0 = build(m, ga, g0, level + 1, n0); },
-                                     [&] { c1 = build(m, g1, ga, level + 1, n1); });
+                                 [&] { c1 = build(m, g1, ga, level + 1, n1); });
             } else {
                 c0 = build(m, ga, g0, level + 1, n0);
                 c1 = build(m, g1, ga, level + 1, n1);

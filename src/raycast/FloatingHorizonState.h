@@ -13,7 +13,6 @@
 #include "raycast/ImageryTexels.h"
 #include "raycast/RaycastOptions.h"
 
-
 #include <chrono>
 #include <cstdint>
 #include <vector>

@@ -101,7 +101,11 @@ try {
   check(maxChannel <= 1 && sameColor >= 0.999 * n, 'color equals the native cast (<= 1 level, >= 99.9 % identical)');
   check(maxDepth <= 1e-6 && sameDepth >= 0.999 * n, 'depth equals the native cast (<= 1e-6, >= 99.9 % identical)');
   const vp = new Float32Array(M.HEAPU8.slice(M._of_view_proj(), M._of_view_proj() + 64).buffer);
-  check(vp.every(Number.isFinite) && vp[15] === 0 && vp[11] === -1, 'view-projection is a perspective matrix');
+  // Its last row gives clip w = view depth along F = (sin h, 0, cos h) (shear): F . (p - eye).
+  const h = cam.heading * Math.PI / 180, F = [Math.sin(h), 0, Math.cos(h)];
+  const wOfEye = vp[3] * cam.eye[0] + vp[7] * cam.eye[1] + vp[11] * cam.eye[2] + vp[15];
+  check(Math.abs(vp[3] - F[0]) < 1e-6 && Math.abs(vp[7]) < 1e-6 && Math.abs(vp[11] - F[2]) < 1e-6 &&
+        Math.abs(wOfEye) < 1e-2, 'view-projection: clip w is the view depth along the heading');
 
   // The flight: UP held for 200 steps of 10 ms, against `overflight sim`.
   check(loadTerrain(terrain) === 0, 'terrain reloaded (a fresh flight)');
