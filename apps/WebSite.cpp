@@ -141,7 +141,7 @@ WebSiteReport write_web_site(const DataSet& data, const std::string& source, con
     const Terrain& full = data.terrain;
     report.decimation = decimation_factor(full.rows(), full.cols(), o.max_size);
     if (const std::string problem = decimation_problem(full.rows(), full.cols(), report.decimation); !problem.empty())
-        throw Error(source, problem + " to fit --max-size " + std::to_string(o.max_size));
+        throw Error(source, problem + " (--max-size " + std::to_string(o.max_size) + ")");
     DataSet site{decimate_terrain(full, report.decimation), data.environment, data.start, data.scene, data.info};
     if (report.decimation > 1)
         notice(std::to_string(full.cols()) + "x" + std::to_string(full.rows()) + " samples decimated by " +
@@ -158,7 +158,8 @@ WebSiteReport write_web_site(const DataSet& data, const std::string& source, con
     const std::vector<std::uint8_t> object = object_bytes(objects);
     write_bytes(temp.path() / "terrain.bin", terrain);
     write_bytes(temp.path() / "objects.bin", object);
-    const std::string json = site_json(site.terrain, source, report.decimation, terrain.size(), objects, object.size()).dump(1) + "\n";
+    const std::string json =
+        site_json(site.terrain, source, report.decimation, terrain.size(), objects, object.size()).dump(1) + "\n";
     write_file_atomically((temp.path() / "site.json").string(), json.data(), json.size());
     for (const char* name : kEngineFiles) copy_into(o.engine_dir, name, temp.path());
     for (const char* name : kShellFiles) copy_into(o.shell_dir, name, temp.path());
