@@ -12,5 +12,6 @@ void add_bench_command(CLI::App& app);
 void add_tile_command(CLI::App& app);
 void add_sim_command(CLI::App& app);
 void add_fly_command(CLI::App& app);
+void add_web_command(CLI::App& app);
 
 } // namespace overflight::app

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     overflight::app::add_sim_command(app);
     overflight::app::add_fly_command(app);
     overflight::app::add_tile_command(app);
+    overflight::app::add_web_command(app);
     try {
         app.parse(argc, argv);
         overflight::app::finish_stdout();

@@ -5,11 +5,11 @@
 #include "core/DemoIsland.h"
 
 #include "core/Error.h"
+#include "core/Parallel.h"
 #include "core/Shading.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -123,7 +123,7 @@ DataSet make_demo_island(const DemoOptions& options) {
     Terrain& t = ds.terrain;
     // Octaves follow the resolution so larger islands gain detail, not just size.
     const int octaves = std::clamp(int(std::log2(float(n - 1))) - 1, 4, 13);
-    tbb::parallel_for(0, n, [&](int row) {
+    parallel::for_each_index(0, n, [&](int row) {
         for (int col = 0; col < n; ++col) {
             float h = relief(float(col) / float(n - 1), float(row) / float(n - 1), octaves, options.seed);
             h = std::max(h, kSeaLevel - 35.0f);
@@ -132,7 +132,7 @@ DataSet make_demo_island(const DemoOptions& options) {
     });
     shade_by_elevation(t, kSeaLevel);
     // Steep slopes are bare rock whatever their height.
-    tbb::parallel_for(0, n, [&](int row) {
+    parallel::for_each_index(0, n, [&](int row) {
         for (int col = 0; col < n; ++col) {
             const float h = t.sample_height(row, col);
             if (h < kSeaLevel + 3.0f) continue;

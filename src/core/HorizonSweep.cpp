@@ -2,8 +2,9 @@
 // with Visibility and Shading Applications" (IEEE TVCG 1998). See HorizonSweep.h.
 #include "core/HorizonSweep.h"
 
+#include "core/Parallel.h"
+
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -299,7 +300,7 @@ glm::vec3 unit_sun(const glm::vec3& sun_dir) {
 void sweep_bands(const Terrain& t, const glm::vec3& sun, float* ceiling, std::uint8_t* mask) {
     const SweepGrid g = sweep_grid(t, sun);
     const int bands = (g.J_max - g.J_min + kBand) / kBand;
-    tbb::parallel_for(0, bands, [&](int b) {
+    parallel::for_each_index(0, bands, [&](int b) {
         const int J0 = g.J_min + b * kBand, J1 = std::min(g.J_max + 1, J0 + kBand);
         if (J0 >= J1) return;
         thread_local BandScratch scratch;
@@ -349,7 +350,7 @@ void sweep_shadow(const Terrain& t, const glm::vec3& sun_dir, ShadowCeiling& cei
 
 std::vector<std::uint8_t> shadow_mask(const Terrain& t, const ShadowCeiling& c) {
     std::vector<std::uint8_t> mask(std::size_t(t.rows()) * std::size_t(t.cols()));
-    tbb::parallel_for(0, t.rows(), [&](int row) {
+    parallel::for_each_index(0, t.rows(), [&](int row) {
         for (int col = 0; col < t.cols(); ++col)
             mask[t.index(row, col)] = c.shadowed(row, col, t.sample_height(row, col)) ? 1 : 0;
     });

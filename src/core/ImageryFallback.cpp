@@ -1,8 +1,9 @@
 // See ImageryFallback.h.
 #include "core/ImageryFallback.h"
 
+#include "core/Parallel.h"
+
 #include <glm/vec3.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -48,7 +49,7 @@ void blend_over_terrain_colors(ImageryPyramid& imagery, const Terrain& terrain, 
     const std::vector<std::int64_t> sums = alpha_sums(img);
     const std::size_t w1 = std::size_t(img.width) + 1;
     const double tx = imagery.texel_x(0), tz = imagery.texel_z(0);
-    tbb::parallel_for(0, img.height, [&](int row) {
+    parallel::for_each_index(0, img.height, [&](int row) {
         const int r0 = std::max(row - feather, 0), r1 = std::min(row + feather + 1, img.height);
         for (int col = 0; col < img.width; ++col) {
             Rgba8& t = img.at(col, row);
@@ -71,7 +72,7 @@ void blend_over_terrain_colors(ImageryPyramid& imagery, const Terrain& terrain, 
 void colors_from_imagery(const ImageryPyramid& imagery, Terrain& terrain) {
     const int level = mip_level_for_footprint(terrain.h_scale(), imagery.texel_size(0), imagery.levels());
     const float hs = terrain.h_scale();
-    tbb::parallel_for(0, terrain.rows(), [&](int row) {
+    parallel::for_each_index(0, terrain.rows(), [&](int row) {
         for (int col = 0; col < terrain.cols(); ++col) {
             const Rgba8 t = imagery.bilinear(double(hs) * col, double(hs) * row, level);
             terrain.color(row, col) = Rgb8{t.r, t.g, t.b};

@@ -2,7 +2,7 @@
 // filtered levels, level chosen from the pixel's footprint). See ImageryPyramid.h.
 #include "core/ImageryPyramid.h"
 
-#include <tbb/parallel_for.h>
+#include "core/Parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,7 +64,7 @@ double ImageryPyramid::coverage() const {
 Image2D<Rgba8> box_filter_half(const Image2D<Rgba8>& src) {
     const int w = std::max(1, src.width / 2), h = std::max(1, src.height / 2);
     Image2D<Rgba8> out(w, h);
-    tbb::parallel_for(0, h, [&](int row) {
+    parallel::for_each_index(0, h, [&](int row) {
         // Box rows [row * H / h, (row + 1) * H / h): two source rows, three
         // for the last one of an odd side, one when the side is 1.
         const int r0 = int(std::int64_t(row) * src.height / h), r1 = int(std::int64_t(row + 1) * src.height / h);

@@ -1,6 +1,6 @@
 #include "core/PackedNormals.h"
 
-#include <tbb/parallel_for.h>
+#include "core/Parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,7 @@ std::uint32_t PackedNormals::pack(const glm::vec3& n) {
 PackedNormals pack_normals(const Terrain& t) {
     PackedNormals out;
     out.packed.resize(std::size_t(t.rows()) * std::size_t(t.cols()));
-    tbb::parallel_for(0, t.rows(), [&](int row) {
+    parallel::for_each_index(0, t.rows(), [&](int row) {
         for (int col = 0; col < t.cols(); ++col) out.packed[t.index(row, col)] = PackedNormals::pack(t.sample_normal(row, col));
     });
     return out;

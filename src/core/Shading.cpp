@@ -1,7 +1,7 @@
 // Based on: gdaldem hillshade (Horn 1981 gradient) and gdaldem color-relief.
 #include "core/Shading.h"
 
-#include <tbb/parallel_for.h>
+#include "core/Parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,7 +73,7 @@ void shade_by_elevation(Terrain& t, float sea_level) {
 }
 
 void shade_by_elevation(Terrain& t, float sea_level, float lo, float hi) {
-    tbb::parallel_for(0, t.rows(), [&](int row) {
+    parallel::for_each_index(0, t.rows(), [&](int row) {
         for (int col = 0; col < t.cols(); ++col) t.color(row, col) = shaded_color(t, row, col, lo, hi, sea_level);
     });
 }

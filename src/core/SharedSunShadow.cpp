@@ -1,8 +1,9 @@
 // One sweep per sun direction, shared. See SharedSunShadow.h.
 #include "core/SharedSunShadow.h"
 
+#include "core/Parallel.h"
+
 #include <glm/geometric.hpp>
-#include <tbb/task_arena.h>
 
 namespace overflight {
 
@@ -17,7 +18,7 @@ std::shared_ptr<const SunShadow> SharedSunShadow::get(const glm::vec3& sun_dir) 
     latest_.reset();
     // Isolated: while it holds the lock, this thread takes no other task
     // (one that might wait for the lock in its turn).
-    tbb::this_task_arena::isolate([&] { sweep_shadow(terrain_, sun, next->ceiling, next->mask); });
+    parallel::isolate([&] { sweep_shadow(terrain_, sun, next->ceiling, next->mask); });
     next->sun_dir = sun;
     ++sweeps_;
     latest_ = std::move(next);

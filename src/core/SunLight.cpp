@@ -1,10 +1,11 @@
 // Based on: CMSC 23700 hovercraft project sec. 4.1 (sun and ambient light). See SunLight.h.
 #include "core/SunLight.h"
 
+#include "core/Parallel.h"
+
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <glm/gtc/constants.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -178,7 +179,7 @@ void light_samples(const Terrain& t, const PackedNormals& normals, const Environ
 #if OVERFLIGHT_LIGHT_AVX2
     static const bool avx2 = __builtin_cpu_supports("avx2");
 #endif
-    tbb::parallel_for(0, t.rows(), [&](int row) {
+    parallel::for_each_index(0, t.rows(), [&](int row) {
         const std::size_t i0 = t.index(row, 0);
         thread_local std::vector<float> lambert, light;
         lambert.resize(2 * std::size_t(cols)); // the second half: the flipped light (LightRow::other)

@@ -3,12 +3,11 @@
 // 6 and 7.
 #include "lod/RoamMesh.h"
 
+#include "core/BitCast.h"
 #include "core/Error.h"
-
-#include <tbb/parallel_for.h>
+#include "core/Parallel.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -21,7 +20,7 @@ namespace {
 // mantissa bits, a piecewise-linear log2 with 128 steps per octave; no log()
 // per triangle.
 constexpr float kLeastError = 1.0f / 1024.0f;
-const std::uint32_t kLeastKey = std::bit_cast<std::uint32_t>(kLeastError) >> 16;
+const std::uint32_t kLeastKey = bit_cast<std::uint32_t>(kLeastError) >> 16;
 
 // A hint that a line will be read soon. The rebuild waits mostly on loads of
 // nodes, heights and variance bounds at random places; issuing them together
@@ -32,7 +31,7 @@ inline void prefetch(const void* p) { __builtin_prefetch(p); }
 
 int roam_bucket(float error_px) {
     if (!(error_px > kLeastError)) return 1;
-    const std::uint32_t key = std::bit_cast<std::uint32_t>(error_px) >> 16;
+    const std::uint32_t key = bit_cast<std::uint32_t>(error_px) >> 16;
     return int(std::min<std::uint32_t>(key - kLeastKey + 1, kRoamBuckets - 2));
 }
 
@@ -71,7 +70,7 @@ RoamMesh::RoamMesh(const Terrain& terrain, const RoamOptions& options) : terrain
     // Inside the terrain its own normals and colors; padding samples (reached
     // only by border-straddling triangles) take the padded copy's.
     attributes_.resize(std::size_t(size_) * std::size_t(size_));
-    tbb::parallel_for(0, size_, [&](int row) {
+    parallel::for_each_index(0, size_, [&](int row) {
         for (int col = 0; col < size_; ++col) {
             const Terrain& src = (row < domain_rows_ && col < domain_cols_) ? terrain : grid();
             const glm::vec3 n = src.sample_normal(row, col);

@@ -45,12 +45,12 @@
 // within reach of the budget.
 #include "core/Camera.h"
 #include "core/MeshArrays.h"
+#include "core/Parallel.h"
 #include "core/Terrain.h"
 #include "lod/RoamVarianceTree.h"
 #include "lod/RoamViewWedge.h"
 
 #include <glm/vec2.hpp>
-#include <tbb/cache_aligned_allocator.h>
 
 #include <array>
 #include <cstdint>
@@ -195,7 +195,7 @@ private:
     const std::uint16_t* heights_ = nullptr; // grid() samples, row-major
     std::optional<glm::dvec2> focus_;
     // Pools sized once for the budget; the counts say what the frame uses.
-    std::vector<Node, tbb::cache_aligned_allocator<Node>> nodes_;
+    std::vector<Node, parallel::CacheAlignedAllocator<Node>> nodes_;
     std::vector<std::int32_t> children_;
     std::vector<Vertex> vertices_;
     std::size_t node_count_ = 0, vertex_count_ = 0;

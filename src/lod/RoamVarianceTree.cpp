@@ -2,8 +2,7 @@
 #include "lod/RoamVarianceTree.h"
 
 #include "core/Error.h"
-
-#include <tbb/parallel_invoke.h>
+#include "core/Parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,8 +34,8 @@ struct Builder {
             const std::uint32_t n0 = store_children ? 2 * node : 0, n1 = store_children ? 2 * node + 1 : 0;
             std::uint16_t c0 = 0, c1 = 0;
             if (level < 8) {
-                tbb::parallel_invoke([&] { c0 = build(m, ga, g0, level + 1, n0); },
-                                     [&] { c1 = build(m, g1, ga, level + 1, n1); });
+                parallel::invoke([&] { c0 = build(m, ga, g0, level + 1, n0); },
+                                 [&] { c1 = build(m, g1, ga, level + 1, n1); });
             } else {
                 c0 = build(m, ga, g0, level + 1, n0);
                 c1 = build(m, g1, ga, level + 1, n1);
@@ -66,7 +65,7 @@ RoamVarianceTree::RoamVarianceTree(const Terrain& terrain, int max_depth) {
     const std::uint32_t s = std::uint32_t(size);
     const std::uint32_t nw = 0, ne = n, sw = n * s, se = n * s + n;
     const Builder b{terrain.heights().data(), finest_level(), stored_depth_, nodes_.data()};
-    tbb::parallel_invoke([&] { b.build(ne, nw, se, 0, 2); }, [&] { b.build(sw, se, nw, 0, 3); });
+    parallel::invoke([&] { b.build(ne, nw, se, 0, 2); }, [&] { b.build(sw, se, nw, 0, 3); });
 }
 
 } // namespace overflight

@@ -5,12 +5,9 @@
 // a Terrain with Objects" (SIBGRAPI 1997), sec. 4-6 (Algorithm 1, exact conic
 // projection, depth vector); Guedes, "Integrating Polygonal Objects on Voxel
 // Based Terrain Models" (pitched view planes).
-#include "core/SunLight.h"
 #include "methods/MethodTable.h"
-#include "raycast/FloatingHorizon.h"
-#include "raycast/WaterPass.h"
+#include "raycast/VoxelRenderer.h"
 
-#include <chrono>
 #include <utility>
 
 namespace overflight {
@@ -19,34 +16,16 @@ namespace {
 
 class VoxelMethod final : public TerrainMethod {
 public:
-    explicit VoxelMethod(const MethodContext& c)
-        : caster_(c.terrain),
-          lighting_(c.terrain, c.terrain.imagery() ? LightOutput::Light : LightOutput::Colors, c.sun_shadow),
-          water_(c.terrain, c.sun_shadow),
-          options_(c.settings.raycast) {
-        // Imagery finer than the samples: the cast paints light, the imagery the albedo.
-        caster_.set_imagery(c.terrain.imagery());
-    }
+    explicit VoxelMethod(const MethodContext& c) : renderer_(c.terrain, c.settings.raycast, c.sun_shadow) {}
     MethodOutputKind output_kind() const override { return MethodOutputKind::Images; }
     MethodOutput produce(const MethodView& view, MethodStats& stats) override {
         stats.clear();
-        const auto t0 = std::chrono::steady_clock::now();
-        const std::vector<Rgb8>* colors = lighting_.colors(view.environment);
-        if (lighting_.version() != painted_) {
-            caster_.set_colors(colors, lighting_.light_mask());
-            painted_ = lighting_.version();
-            stats.add_step_since("light", t0);
-        }
-        RaycastStats s;
-        caster_.render(view.camera, view.environment, options_, color_, depth_, &s);
-        stats.steps.push_back({"raycast", s.ms_total});
-        stats.raycast = s;
-        if (view.environment.water) {
-            const auto tw = std::chrono::steady_clock::now();
-            water_.set_colors(colors, view.environment);
-            water_.apply(view.camera, view.environment, options_.surface, color_, depth_);
-            stats.add_step_since("water", tw);
-        }
+        VoxelFrameStats frame;
+        renderer_.render(view.camera, view.environment, color_, depth_, frame);
+        if (frame.relit) stats.steps.push_back({"light", frame.light_ms});
+        stats.steps.push_back({"raycast", frame.raycast.ms_total});
+        stats.raycast = frame.raycast;
+        if (frame.water) stats.steps.push_back({"water", frame.water_ms});
         return MethodOutput::images(color_, depth_);
     }
     // The caster writes every pixel of both images (sky included), and resizes
@@ -58,11 +37,7 @@ public:
     }
 
 private:
-    FloatingHorizon caster_;
-    TerrainLighting lighting_;
-    WaterPass water_;
-    std::uint64_t painted_ = 0; // the lighting's version the caster paints
-    RaycastOptions options_;
+    VoxelRenderer renderer_;
     ColorImage color_;
     DepthImage depth_;
 };

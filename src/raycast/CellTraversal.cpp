@@ -2,8 +2,9 @@
 // See CellTraversal.h.
 #include "raycast/CellTraversal.h"
 
+#include "core/BitCast.h"
+
 #include <algorithm>
-#include <bit>
 #include <cfloat>
 #include <climits>
 #include <cmath>
@@ -35,7 +36,7 @@ struct LinearRun {
 
 LinearRun linear_run(double x, double step) {
     if (!(x >= DBL_MIN && x < DBL_MAX && step > 0.0 && step < x)) return {};
-    const double binade = std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) & 0x7FF0000000000000ull); // 2^e
+    const double binade = bit_cast<double>(bit_cast<std::uint64_t>(x) & 0x7FF0000000000000ull); // 2^e
     const double u = binade * 0x1p-52, top = binade * 2.0;
     // The first rounded sum less x is c (exact: x <= x + step < 2 x), unless it left the binade.
     const double c = (x + step) - x;

@@ -4,10 +4,9 @@
 #include "raycast/ClassicVoxelSpace.h"
 
 #include "core/Error.h"
+#include "core/Parallel.h"
 
 #include <glm/trigonometric.hpp>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,8 +49,8 @@ ClassicVoxelSpaceStats render_classic_voxel_space(const Terrain& terrain, const 
     const float vs = terrain.v_scale(), y0 = terrain.y_offset();
     Rgb8* frame = color.pixels.data();
 
-    tbb::parallel_for(tbb::blocked_range<int>(0, W, 64), [&](const tbb::blocked_range<int>& band) {
-        const int c0 = band.begin(), n = band.end() - band.begin();
+    parallel::for_each_range(0, W, 64, [&](int c0, int c_end) {
+        const int n = c_end - c0;
         std::vector<int> ybuffer(std::size_t(n), H); // first row not yet painted below the horizon
         for (const double z : lines) {
             // The line at distance z across the view, in samples: column c's

@@ -3,10 +3,8 @@
 // FloatingHorizonCast.h.
 #include "raycast/FloatingHorizonCast.inl"
 
+#include "core/Parallel.h"
 #include "raycast/FloatingHorizon.h"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace overflight {
 
@@ -23,12 +21,13 @@ void CastTerrain::set_colors(const std::vector<Rgb8>* sample_colors, const Light
     colors.resize(from.size());
     const std::uint8_t* shadowed = mask.shadowed ? mask.shadowed->data() : nullptr;
     other_colors = shadowed ? mask.other_colors->data() : nullptr;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 1 << 16), [&](const auto& r) {
+    const std::size_t grain = std::size_t(1) << 16;
+    parallel::for_each_range(std::size_t(0), from.size(), grain, [&](std::size_t begin, std::size_t end) {
         if (shadowed)
-            for (std::size_t i = r.begin(); i < r.end(); ++i)
+            for (std::size_t i = begin; i < end; ++i)
                 colors[i] = pack_rgb(from[i]) | (shadowed[i] ? kShadowedBit : 0u);
         else
-            for (std::size_t i = r.begin(); i < r.end(); ++i) colors[i] = pack_rgb(from[i]);
+            for (std::size_t i = begin; i < end; ++i) colors[i] = pack_rgb(from[i]);
     });
     level_colors[0] = colors.data();
     lod_pyramid.reset();

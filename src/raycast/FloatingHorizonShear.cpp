@@ -7,12 +7,12 @@
 // Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization
 // of a Terrain with Objects", SIBGRAPI 1997, Algorithm 1, sec. 5.1-5.2,
 // eq. 7 and Algorithm 2, sec. 6.
+#include "core/Parallel.h"
 #include "raycast/FloatingHorizonState.h"
 #include "raycast/ShearDrape.h"
 #include "raycast/ShearResolve.h"
 
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -63,7 +63,7 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
     std::atomic<long long> visited{0}, painted{0};
     // Thread time of each step, summed over the blocks (nanoseconds).
     std::atomic<long long> cast_ns{0}, resolve_ns{0};
-    tbb::parallel_for(0, blocks, [&](int b) {
+    parallel::for_each_index(0, blocks, [&](int b) {
         const auto tc = Clock::now();
         FloatingHorizonState::BlockScratch& sc = s.block_scratch.local();
         const std::size_t need = std::size_t(kShearBlock) * std::size_t(H + kPaintRows);

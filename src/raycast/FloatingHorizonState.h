@@ -6,13 +6,12 @@
 #include "core/Camera.h"
 #include "core/DataSet.h"
 #include "core/Image.h"
+#include "core/Parallel.h"
 #include "raycast/Atmosphere.h"
 #include "raycast/FloatingHorizonCast.h"
 #include "raycast/FloatingHorizonTables.h"
 #include "raycast/ImageryTexels.h"
 #include "raycast/RaycastOptions.h"
-
-#include <tbb/enumerable_thread_specific.h>
 
 #include <chrono>
 #include <cstdint>
@@ -60,7 +59,7 @@ struct FloatingHorizonState {
         std::vector<std::uint32_t> color, slice;
         std::vector<int> jend;
     };
-    tbb::enumerable_thread_specific<BlockScratch> block_scratch;
+    parallel::ThreadLocal<BlockScratch> block_scratch;
 
     // Tilt: the whole image's cast, column-major (one cast column after the other).
     TiltRows tilt_rows;

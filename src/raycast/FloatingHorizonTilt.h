@@ -10,12 +10,12 @@
 // Models", Algorithm 1 (the pitched camera's per-row ray slopes), over the
 // Floating Horizon of Szenberg, Gattass, Carvalho, "An Algorithm for the
 // Visualization of a Terrain with Objects", SIBGRAPI 1997, Algorithm 1.
+#include "core/Parallel.h"
 #include "raycast/FloatingHorizonState.h"
 #include "raycast/RayMarcher.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -51,7 +51,7 @@ void resolve_tilt(const FloatingHorizonState& s, const Camera& camera, const Env
     const RayMarcher::Frame mf = marcher.frame(camera);
     std::atomic<long long> painted{0};
     std::atomic<int> fallback{0};
-    tbb::parallel_for(0, H, [&](int r) {
+    parallel::for_each_index(0, H, [&](int r) {
         const int j = H - 1 - r;
         long long px = 0;
         if (j < tr.j_lo || j >= tr.j_hi) {

@@ -10,6 +10,7 @@
 // of a Terrain with Objects", SIBGRAPI 1997, Algorithm 1 and sec. 5.2, over
 // the per-row ray slopes of Guedes, "Integrating Polygonal Objects on Voxel
 // Based Terrain Models", Algorithm 1.
+#include "core/Parallel.h"
 #include "raycast/FloatingHorizonTilt.h"
 
 namespace overflight {
@@ -29,7 +30,7 @@ void cast_tilt_exact(FloatingHorizonState& s, const Camera& camera, const Enviro
     t0 = Clock::now();
     std::atomic<long long> visited{0};
     const int blocks = (ws + kShearBlock - 1) / kShearBlock;
-    tbb::parallel_for(0, blocks, [&](int b) {
+    parallel::for_each_index(0, blocks, [&](int b) {
         const int c0 = b * kShearBlock, c1 = std::min(ws, c0 + kShearBlock);
         const std::size_t off = std::size_t(c0) * cstride;
         visited += cast_columns(s.terrain, f, options, c0, c1, s.tilt_color.data() + off, s.tilt_slice.data() + off,
@@ -40,7 +41,7 @@ void cast_tilt_exact(FloatingHorizonState& s, const Camera& camera, const Enviro
         const glm::dvec3 F = camera.forward(), R = camera.right();
         const DrapeFrame frame{&s.imagery, f.slices.df.data(), f.slices.df[0], f.rows.m.data(), float(camera.eye.x),
                                float(camera.eye.z)};
-        tbb::parallel_for(0, ws, [&](int cs) {
+        parallel::for_each_index(0, ws, [&](int cs) {
             const double a = f.columns.a[std::size_t(cs)];
             const std::size_t off = std::size_t(cs) * cstride;
             drape_column(frame, float(F.x + a * R.x), float(F.z + a * R.z), s.tilt_color.data() + off,

@@ -12,6 +12,7 @@
 // Models", Algorithm 1, over the Floating Horizon of Szenberg, Gattass,
 // Carvalho, "An Algorithm for the Visualization of a Terrain with Objects",
 // SIBGRAPI 1997, Algorithm 1.
+#include "core/Parallel.h"
 #include "raycast/FloatingHorizonTilt.h"
 #include "raycast/FrontFace.h"
 
@@ -136,7 +137,7 @@ void cast_tilt_guedes(FloatingHorizonState& s, const Camera& camera, const Envir
 
     t0 = Clock::now();
     std::atomic<long long> visited{0};
-    tbb::parallel_for(0, W, [&](int c) {
+    parallel::for_each_index(0, W, [&](int c) {
         long long n = 0;
         s.tilt_jend[std::size_t(c)] = cast_guedes_column(s, camera, c, s.tilt_color.data() + std::size_t(c) * rc,
                                                          s.tilt_slice.data() + std::size_t(c) * rc, n);

@@ -1,7 +1,7 @@
 // Based on: max-mipmaps for height-field ray casting. See HeightPyramid.h.
 #include "raycast/HeightPyramid.h"
 
-#include <tbb/parallel_for.h>
+#include "core/Parallel.h"
 
 #include <algorithm>
 
@@ -24,7 +24,7 @@ HeightPyramid::HeightPyramid(const Terrain& terrain, int max_level, const std::u
         auto color = [&](int i, int j) -> std::uint32_t {
             return prev ? prev->colors[std::size_t(i) * std::size_t(cols) + std::size_t(j)] : colors0[terrain.index(i, j)];
         };
-        tbb::parallel_for(0, next.rows, [&](int I) {
+        parallel::for_each_index(0, next.rows, [&](int I) {
             const int i1 = std::min(2 * I + 2, rows);
             for (int J = 0; J < next.cols; ++J) {
                 const int j1 = std::min(2 * J + 2, cols);

@@ -1,7 +1,7 @@
 // See ImageryTexels.h.
 #include "raycast/ImageryTexels.h"
 
-#include <tbb/parallel_for.h>
+#include "core/Parallel.h"
 
 #include <cmath>
 #include <limits>
@@ -32,7 +32,7 @@ void ImageryTexels::bind(const ImageryPyramid* pyramid) {
     for (int l = 0; l < pyramid->levels(); ++l) {
         const Image2D<Rgba8>& img = pyramid->level(l);
         const Level& lv = levels_[std::size_t(l)];
-        tbb::parallel_for(0, img.height, [&](int row) {
+        parallel::for_each_index(0, img.height, [&](int row) {
             for (int col = 0; col < img.width; ++col)
                 out[std::size_t(lv.first) + tiled_index(col, row, lv.tiles_x)] = img.at(col, row);
         });

@@ -2,13 +2,13 @@
 // See RayMarcher.h. Deliberately simple and slow: it is the reference.
 #include "raycast/RayMarcher.h"
 
+#include "core/Parallel.h"
 #include "raycast/Atmosphere.h"
 #include "raycast/CellTraversal.h"
 #include "raycast/ImageryTexels.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -164,7 +164,7 @@ void RayMarcher::render(const Camera& camera, SurfaceModel surface, ColorImage& 
     if (color.width != camera.width || color.height != camera.height) color.resize(camera.width, camera.height);
     if (depth.width != camera.width || depth.height != camera.height) depth.resize(camera.width, camera.height);
     const Frame f = frame(camera);
-    tbb::parallel_for(0, camera.height, [&](int row) {
+    parallel::for_each_index(0, camera.height, [&](int row) {
         for (int col = 0; col < camera.width; ++col) shade_pixel(camera, f, surface, col, row, color.at(col, row), depth.at(col, row));
     });
 }

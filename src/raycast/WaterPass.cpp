@@ -3,12 +3,12 @@
 // (RayMarcher). See WaterPass.h.
 #include "raycast/WaterPass.h"
 
+#include "core/Parallel.h"
 #include "core/WaterSurface.h"
 #include "raycast/Atmosphere.h"
 #include "raycast/RayMarcher.h"
 
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -63,7 +63,7 @@ long long WaterPass::apply(const Camera& camera, const Environment& env, Surface
     const double top = top_;
     const Unprojection pixels(frame.inverse_view_projection, camera.width);
     std::atomic<long long> flooded{0};
-    tbb::parallel_for(0, camera.height, [&](int row) {
+    parallel::for_each_index(0, camera.height, [&](int row) {
         long long n = 0;
         const glm::dvec4 row_term = frame.inverse_view_projection[1] * (1.0 - (row + 0.5) / camera.height * 2.0);
         for (int col = 0; col < camera.width; ++col) {
@@ -117,7 +117,7 @@ long long WaterPass::apply_under(const Camera& camera, const Environment& env, S
     const glm::dvec4 m2 = frame.inverse_view_projection[2], m3 = frame.inverse_view_projection[3];
     const Rgb8 deep = to_rgb8(glm::clamp(water_deep_light(env), 0.0f, 1.0f));
     std::atomic<long long> surface{0};
-    tbb::parallel_for(0, camera.height, [&](int row) {
+    parallel::for_each_index(0, camera.height, [&](int row) {
         long long n = 0;
         const glm::dvec4 row_term = frame.inverse_view_projection[1] * (1.0 - (row + 0.5) / camera.height * 2.0);
         for (int col = 0; col < camera.width; ++col) {

@@ -93,7 +93,7 @@ FlightSession::FlightSession(const Terrain& terrain, const Environment& environm
     if (water_level_problem(terrain, level).empty()) water_level_ = level;
     pending_.reserve(kMaxCommands);
     commands_.reserve(kMaxCommands);
-    record_.frames.reserve(unattended() ? std::size_t(options.frames) : 4096);
+    if (options.record) record_.frames.reserve(unattended() ? std::size_t(options.frames) : 4096);
 }
 
 void FlightSession::press(Key key) {
@@ -163,6 +163,7 @@ void FlightSession::advance(double wall_seconds) {
 }
 
 void FlightSession::end_frame() {
+    if (!options_.record) return;
     const HovercraftState& s = hovercraft_.state();
     FlightFrame rec;
     rec.frame = frame_;

@@ -35,6 +35,7 @@ struct FlightSessionOptions {
     VehicleStart start;             // if !given: the terrain centre, facing south
     bool hud = true;
     bool lighting = true;           // start with sun lighting (false: baked, the `1` key toggles)
+    bool record = true;             // false: end_frame keeps no record (a web page flying for hours)
 };
 
 // What `f` cycles through: no fog, the hovercraft paper's GL_EXP fog, the
@@ -82,7 +83,8 @@ public:
     // Runs the physics for the time this frame stands for (`wall_seconds`
     // since the previous frame when interactive) and moves the chase camera.
     void advance(double wall_seconds);
-    // Records the frame (camera, vehicle, keys seen by its physics steps).
+    // Records the frame (camera, vehicle, keys seen by its physics steps)
+    // unless the options say not to.
     void end_frame();
 
     // True once an unattended run has begun all its frames.

@@ -1,0 +1,194 @@
+// The web page's engine. See WebEngine.h.
+#include "WebEngine.h"
+
+#include "core/Camera.h"
+#include "core/Error.h"
+#include "core/Image.h"
+#include "core/SunLight.h"
+#include "core/WebTerrainFormat.h"
+#include "raycast/RaycastOptions.h"
+#include "raycast/VoxelRenderer.h"
+#include "sim/FlightSession.h"
+#include "sim/KeyState.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <new>
+#include <optional>
+#include <span>
+#include <string>
+
+using namespace overflight;
+
+namespace {
+
+// `fly`'s default field of view.
+constexpr double kFov = 60.0;
+
+// A loaded terrain and its flight. The session and the renderer keep
+// references to the terrain: it lives as long as they do.
+struct Flight {
+    explicit Flight(WebTerrain decoded) : data(std::move(decoded)) {
+        // As `fly`: baked lighting in the file is where the lighting key starts.
+        FlightSessionOptions options;
+        options.fov = kFov;
+        options.start = data.start;
+        options.lighting = !lighting_is_baked(data.environment);
+        options.record = false;
+        data.environment.baked = false;
+        session = std::make_unique<FlightSession>(data.terrain, data.environment, options);
+        renderer = std::make_unique<VoxelRenderer>(data.terrain, RaycastOptions{});
+    }
+    WebTerrain data;
+    std::unique_ptr<FlightSession> session;
+    std::unique_ptr<VoxelRenderer> renderer;
+};
+
+struct Engine {
+    std::unique_ptr<Flight> flight;
+    int width = 1280, height = 720;
+    std::optional<Camera> pinned;
+    ColorImage color;
+    DepthImage depth;
+    float view_proj[16] = {};
+    double camera[8] = {};
+    double vehicle[5] = {};
+    std::string error;
+};
+
+Engine& engine() {
+    static Engine e;
+    return e;
+}
+
+// Runs `f`, turning an exception into `code` (Error) or OF_FAILED (anything
+// else) and the message of_error() returns.
+template <typename F>
+int guarded(int code, const F& f) {
+    Engine& e = engine();
+    try {
+        f(e);
+        e.error.clear();
+        return 0;
+    } catch (const Error& x) {
+        e.error = x.what();
+        return code;
+    } catch (const std::bad_alloc&) {
+        e.error = "out of memory";
+        return OF_FAILED;
+    } catch (const std::exception& x) {
+        e.error = x.what();
+        return OF_FAILED;
+    }
+}
+
+} // namespace
+
+extern "C" {
+
+int of_load_terrain(const std::uint8_t* bytes, int size) {
+    return guarded(OF_BAD_FILE, [&](Engine& e) {
+        if (!bytes || size < 0) throw Error("terrain file", "no bytes given");
+        auto flight = std::make_unique<Flight>(
+            decode_web_terrain(std::span<const std::uint8_t>(bytes, std::size_t(size)), "terrain file"));
+        e.flight = std::move(flight);
+        e.pinned.reset();
+    });
+}
+
+int of_set_size(int width, int height) {
+    return guarded(OF_BAD_ARGUMENT, [&](Engine& e) {
+        if (width < 1 || height < 1 || width > 16384 || height > 16384)
+            throw Error("size", std::to_string(width) + "x" + std::to_string(height) +
+                                    " is outside 1..16384 pixels each way");
+        e.width = width;
+        e.height = height;
+    });
+}
+
+void of_key(int key, int down) {
+    Engine& e = engine();
+    if (!e.flight || key < 0 || key >= kKeyCount) return;
+    if (down) e.flight->session->press(Key(key));
+    else e.flight->session->release(Key(key));
+}
+
+int of_frame(double wall_seconds) {
+    Engine& e = engine();
+    if (!e.flight) {
+        e.error = "no terrain loaded";
+        return OF_NO_TERRAIN;
+    }
+    return guarded(OF_FAILED, [&](Engine& en) {
+        FlightSession& s = *en.flight->session;
+        s.begin_frame(); // the commands it returns (method, detail, screenshot, quit) are the page's
+        s.advance(wall_seconds);
+        Camera cam = en.pinned ? *en.pinned : s.camera();
+        cam.width = en.width;
+        cam.height = en.height;
+        VoxelFrameStats stats;
+        en.flight->renderer->render(cam, s.environment(), en.color, en.depth, stats);
+        const glm::mat4 vp(cam.projection_matrix() * cam.view_matrix());
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) en.view_proj[4 * c + r] = vp[c][r];
+        const double camera[8] = {cam.eye.x, cam.eye.y, cam.eye.z, cam.heading, cam.pitch, cam.fov, cam.near, cam.far};
+        std::copy(camera, camera + 8, en.camera);
+        const HovercraftState& v = s.vehicle();
+        const double vehicle[5] = {v.x, v.y, v.z, v.heading, v.velocity};
+        std::copy(vehicle, vehicle + 5, en.vehicle);
+        s.end_frame();
+    });
+}
+
+std::uint8_t* of_color() { return reinterpret_cast<std::uint8_t*>(engine().color.pixels.data()); }
+float* of_depth() { return engine().depth.pixels.data(); }
+int of_width() { return engine().color.width; }
+int of_height() { return engine().color.height; }
+const float* of_view_proj() { return engine().view_proj; }
+const double* of_camera() { return engine().camera; }
+const double* of_vehicle() { return engine().vehicle; }
+
+double of_physics_steps() {
+    const Engine& e = engine();
+    return e.flight ? double(e.flight->session->physics_steps()) : 0.0;
+}
+
+int of_toggles() {
+    const Engine& e = engine();
+    if (!e.flight) return 0;
+    const ViewToggles& t = e.flight->session->toggles();
+    return (t.hud ? 1 : 0) | (t.lighting ? 2 : 0) | (t.shadows ? 4 : 0) | (t.water ? 8 : 0) | (int(t.fog) << 4);
+}
+
+int of_set_camera(double x, double y, double z, double heading, double pitch, double fov, double near, double far) {
+    Engine& e = engine();
+    if (!e.flight) {
+        e.error = "no terrain loaded";
+        return OF_NO_TERRAIN;
+    }
+    return guarded(OF_BAD_ARGUMENT, [&](Engine& en) {
+        const Terrain& t = en.flight->data.terrain;
+        Camera cam;
+        cam.eye = {x, y, z};
+        cam.heading = heading;
+        cam.pitch = pitch;
+        cam.fov = fov;
+        cam.width = en.width;
+        cam.height = en.height;
+        // `render`'s defaults (apps/CameraOptions.cpp).
+        cam.near = near > 0 ? near : 1.0;
+        cam.far = far > 0 ? far : std::hypot(t.width(), t.depth()) * 1.05;
+        cam.projection = Projection::Shear;
+        cam.validate();
+        en.pinned = cam;
+    });
+}
+
+void of_follow_vehicle() { engine().pinned.reset(); }
+
+const char* of_error() { return engine().error.c_str(); }
+
+} // extern "C"

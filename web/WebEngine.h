@@ -1,0 +1,88 @@
+#pragma once
+// The engine of the web page, as the page's JavaScript calls it: the core's
+// flight (sim/FlightSession.h: the hovercraft at 100 Hz, the chase camera,
+// the viewer's keys) and the `voxel` method's frame (raycast/VoxelRenderer.h:
+// sun light, Floating Horizon cast, water), the same code `fly` runs, built
+// for WebAssembly (web/CMakeLists.txt). The page uploads the color and depth
+// images and draws the objects over them with the Z-buffer and of_view_proj.
+//
+// One engine per module instance, one thread. Functions returning int return
+// 0 on success and a negative code on failure, of_error() then saying why in
+// one line. Pointers returned stay valid until the next call of any function
+// (memory growth may move the heap: take views of HEAPU8 afresh after each).
+#include <cstdint>
+
+#ifdef __EMSCRIPTEN__
+#include <emscripten/emscripten.h>
+#define OF_EXPORT EMSCRIPTEN_KEEPALIVE
+#else
+#define OF_EXPORT
+#endif
+
+extern "C" {
+
+// Failure codes.
+enum {
+    OF_BAD_FILE = -1,     // the bytes are not a valid OFTERR01 file (core/WebTerrainFormat.h)
+    OF_NO_TERRAIN = -2,   // nothing loaded yet
+    OF_BAD_ARGUMENT = -3, // a size, camera or start the engine cannot use
+    OF_FAILED = -4,       // anything else (out of memory)
+};
+
+// Decodes an OFTERR01 file (`size` bytes at `bytes`, which the caller owns
+// and may free afterwards) and starts a flight on it: the vehicle at the
+// file's start (else the terrain's centre, facing south), sun lighting unless
+// the file bakes it, the chase camera (60 degree field of view, as `fly`).
+// Replaces any terrain loaded before; on failure keeps it.
+OF_EXPORT int of_load_terrain(const std::uint8_t* bytes, int size);
+
+// The image size of the next frames, 1..16384 pixels each way (default 1280x720).
+OF_EXPORT int of_set_size(int width, int height);
+
+// A key going down (down != 0) or up: `key` is sim/KeyState.h's Key value
+// (0 accelerate, 1 brake, 2 left, 3 right, 4 fog, 5 lighting, ..., 13 shadows,
+// 14 sun later, 15 sun earlier, 16 water). Unknown values are ignored.
+// Vehicle keys are sampled by the physics; the others toggle at the next frame.
+OF_EXPORT void of_key(int key, int down);
+
+// One frame: the toggles of keys pressed since the last, `wall_seconds` of
+// physics (the real time since the last frame; at most 0.25 s counts), the
+// chase camera, then the voxel method's color and depth for the frame's
+// camera (the pinned one if of_set_camera was called).
+OF_EXPORT int of_frame(double wall_seconds);
+
+// The last frame's color, RGB8, width*height pixels, row 0 at the TOP (as the
+// native method's images and PNG files; OpenGL's row 0 is the bottom).
+OF_EXPORT std::uint8_t* of_color();
+// The last frame's OpenGL window depth in [0,1] (1 = sky) for the camera's
+// near and far, width*height floats, row 0 at the top.
+OF_EXPORT float* of_depth();
+OF_EXPORT int of_width();
+OF_EXPORT int of_height();
+
+// The last frame's projection * view (16 floats, column-major, world
+// coordinates in, clip coordinates out): what the native object pass uses.
+OF_EXPORT const float* of_view_proj();
+// The last frame's camera: {eye x, y, z, heading, pitch, fov, near, far}.
+OF_EXPORT const double* of_camera();
+// The vehicle after the last frame: {x, y, z, heading (degrees), velocity}.
+OF_EXPORT const double* of_vehicle();
+// Physics steps (10 ms each) run since the terrain was loaded.
+OF_EXPORT double of_physics_steps();
+// The viewer's toggles: bit 0 HUD, 1 sun lighting, 2 shadows, 3 water, bits
+// 4-5 the fog mode (0 off, 1 GL_EXP, 2 atmosphere).
+OF_EXPORT int of_toggles();
+
+// Pins the camera of the next frames (the vehicle keeps flying): eye in world
+// coordinates, heading and pitch and horizontal fov in degrees, near and far
+// along the view axis; a near or far that is not a positive number takes
+// `render`'s default (1, and the terrain's diagonal x 1.05). Shear projection.
+OF_EXPORT int of_set_camera(double x, double y, double z, double heading, double pitch, double fov, double near,
+                            double far);
+// Back to the chase camera.
+OF_EXPORT void of_follow_vehicle();
+
+// The last failure's one-line message ("" if none).
+OF_EXPORT const char* of_error();
+
+} // extern "C"
