@@ -37,17 +37,18 @@ void depth_test_on() {
 
 } // namespace
 
-Compositor::Compositor(const Terrain& terrain, const Scene& scene)
-    : terrain_(terrain), terrain_min_(terrain.min_height()), vehicle_(terrain) {
+Compositor::Compositor(const Terrain& terrain, const Scene& scene) : terrain_(terrain), vehicle_(terrain) {
     block_rows_ = (terrain.rows() + kFloorBlock - 1) / kFloorBlock;
     block_cols_ = (terrain.cols() + kFloorBlock - 1) / kFloorBlock;
     block_min_.assign(std::size_t(block_rows_) * std::size_t(block_cols_), std::numeric_limits<float>::max());
-    for (int row = 0; row < terrain.rows(); ++row)
-        for (int col = 0; col < terrain.cols(); ++col) {
-            float& m = block_min_[std::size_t(row / kFloorBlock) * std::size_t(block_cols_) + std::size_t(col / kFloorBlock)];
-            m = std::min(m, terrain.sample_height(row, col));
-        }
+    for (int row = 0; row < terrain.rows(); ++row) {
+        float* blocks = block_min_.data() + std::size_t(row / kFloorBlock) * std::size_t(block_cols_);
+        for (int col = 0; col < terrain.cols(); ++col)
+            blocks[col / kFloorBlock] = std::min(blocks[col / kFloorBlock], terrain.sample_height(row, col));
+    }
+    terrain_min_ = *std::min_element(block_min_.begin(), block_min_.end());
     objects_.set_scene(scene, terrain);
+    object_texel_ = ObjectShadowMap::texel_bound(objects_.bounds(), ObjectShadowMap::kSize);
     if (const ImageryPyramid* imagery = terrain.imagery()) imagery_texture_.upload(*imagery);
 }
 
@@ -121,7 +122,10 @@ void Compositor::stage(int slot, const MethodOutput& out, const Camera& camera, 
     if (out.kind != MethodOutputKind::Images || !out.color || !out.depth)
         throw Error("compositor", "only an image method's color and depth can be staged");
     stream_.stage_color(slot, *out.color);
-    if (options.objects) stream_.stage_depth(slot, *out.depth, depth_rect(camera, environment, options));
+    if (!options.objects) return;
+    ShadowReach& reach = staged_reach_[std::size_t(slot)];
+    object_shadow_reach(camera, environment, options, reach);
+    stream_.stage_depth(slot, *out.depth, depth_rect(camera, options, reach.rect));
 }
 
 CompositeCounts Compositor::draw_staged(int slot, const Camera& camera, const Environment& environment,
@@ -129,16 +133,16 @@ CompositeCounts Compositor::draw_staged(int slot, const Camera& camera, const En
     return compose(nullptr, slot, camera, environment, target, timer, options);
 }
 
-std::vector<PixelRect> Compositor::object_shadow_rects(const Camera& camera, const Environment& environment,
-                                                       const CompositeOptions& options) const {
+void Compositor::object_shadow_reach(const Camera& camera, const Environment& environment,
+                                     const CompositeOptions& options, ShadowReach& reach) const {
+    reach.rects.clear();
+    reach.rect = {};
     // As begin() and ObjectShadowMap::update() decide it: shadows on, the sun
     // above the horizon, objects or the vehicle to cast them, the sun's light
     // painted. The vehicle's box is where it will be placed (bounds_at), as
     // this may run before begin() places it.
     const glm::vec3 sun = glm::length(environment.sun_dir) > 0 ? glm::normalize(environment.sun_dir) : glm::vec3(0, 1, 0);
-    if (!environment.shadows || !(sun.y > 0) || environment.baked) return {};
-    std::vector<WorldBox> casters = objects_.bounds();
-    if (options.vehicle) casters.push_back(vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading));
+    if (!environment.shadows || !(sun.y > 0) || environment.baked) return;
     // The pixels each object's shadow can reach, down to the lowest terrain:
     // one rectangle per caster, not their bounding rectangle, as the pass
     // costs llvmpipe per pixel it covers (whether a shadow falls there or
@@ -148,18 +152,26 @@ std::vector<PixelRect> Compositor::object_shadow_rects(const Camera& camera, con
     // the reach down to a floor holds every point the shadow falls on, so
     // the lowest sample under it (or the water level above that) is a
     // floor again, twice over.
-    std::vector<PixelRect> rects;
-    for (const WorldBox& caster : casters) {
+    // Each caster grown by two texels of its shadow map, as the map's
+    // filtered lookup darkens up to a texel past the caster's outline.
+    const auto add = [&](const WorldBox& bounds, float texel) {
+        const WorldBox caster{bounds.lo - glm::vec3(2.0f * texel), bounds.hi + glm::vec3(2.0f * texel)};
         float floor = terrain_min_;
-        WorldBox reach = ObjectShadowMap::reach({caster}, sun, floor).front();
+        WorldBox box = ObjectShadowMap::reach({caster}, sun, floor).front();
         for (int pass = 0; pass < 2; ++pass) {
-            floor = floor_under(reach);
+            floor = floor_under(box);
             if (environment.water) floor = std::max(floor, environment.water_level);
-            reach = ObjectShadowMap::reach({caster}, sun, floor).front();
+            box = ObjectShadowMap::reach({caster}, sun, floor).front();
         }
-        rects.push_back(screen_rect(std::span<const WorldBox>(&reach, 1), camera));
+        reach.rects.push_back(screen_rect(std::span<const WorldBox>(&box, 1), camera));
+    };
+    for (const WorldBox& caster : objects_.bounds()) add(caster, object_texel_);
+    if (options.vehicle) {
+        const WorldBox box = vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
+        add(box, ObjectShadowMap::texel_bound({box}, ObjectShadowMap::kVehicleSize));
     }
-    return disjoint_cover(rects);
+    reach.rects = disjoint_cover(reach.rects);
+    for (const PixelRect& r : reach.rects) reach.rect = bounding_union(reach.rect, r);
 }
 
 float Compositor::floor_under(const WorldBox& box) const {
@@ -180,14 +192,20 @@ float Compositor::floor_under(const WorldBox& box) const {
 
 PixelRect Compositor::depth_rect(const Camera& camera, const Environment& environment,
                                  const CompositeOptions& options) const {
+    ShadowReach reach;
+    object_shadow_reach(camera, environment, options, reach);
+    return depth_rect(camera, options, reach.rect);
+}
+
+PixelRect Compositor::depth_rect(const Camera& camera, const CompositeOptions& options,
+                                 const PixelRect& shadow_rect) const {
     if (options.full_depth) return {0, 0, camera.width, camera.height};
     PixelRect r = objects_.screen_rect(camera);
     if (options.vehicle) {
         const WorldBox box = vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
         r = bounding_union(r, screen_rect(std::span<const WorldBox>(&box, 1), camera));
     }
-    for (const PixelRect& shadow : object_shadow_rects(camera, environment, options)) r = bounding_union(r, shadow);
-    return r;
+    return bounding_union(r, shadow_rect);
 }
 
 CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Camera& camera,
@@ -215,14 +233,15 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
     begin(camera, environment, *into, timer, options);
     CompositeCounts counts;
     if (images) {
-        draw_images(out, slot, camera, environment, *into, timer, options);
-        if (options.objects) {
-            const std::vector<PixelRect> rects = object_shadow_rects(camera, environment, options);
-            if ((object_shadow_.active() || vehicle_shadow_.active()) && !rects.empty()) {
-                timer.begin_gl("object_shadows");
-                object_shadow_pass_.draw(*into, camera, rects);
-                timer.end_gl();
-            }
+        // The shadows' reach, worked out once for the frame: for its depth
+        // load and its pass.
+        const ShadowReach& reach = out ? drawn_reach_ : staged_reach_[std::size_t(slot)];
+        if (out && options.objects) object_shadow_reach(camera, environment, options, drawn_reach_);
+        draw_images(out, slot, camera, reach, *into, timer, options);
+        if (options.objects && (object_shadow_.active() || vehicle_shadow_.active()) && !reach.rects.empty()) {
+            timer.begin_gl("object_shadows");
+            object_shadow_pass_.draw(*into, camera, reach.rects);
+            timer.end_gl();
         }
     } else {
         timer.begin_gl("sky");
@@ -261,7 +280,7 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
     return counts;
 }
 
-void Compositor::draw_images(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
+void Compositor::draw_images(const MethodOutput* out, int slot, const Camera& camera, const ShadowReach& reach,
                              RenderTarget& into, StepTimer& timer, const CompositeOptions& options) {
     // Staged now (draw()), or earlier on another thread (draw_staged()).
     if (out) slot = acquire_slot(camera);
@@ -271,7 +290,7 @@ void Compositor::draw_images(const MethodOutput* out, int slot, const Camera& ca
     timer.end_gl();
     if (!options.objects) return;
     timer.begin_gl("depth_upload");
-    if (out) stream_.stage_depth(slot, *out->depth, depth_rect(camera, environment, options));
+    if (out) stream_.stage_depth(slot, *out->depth, depth_rect(camera, options, reach.rect));
     stream_.load_depth(slot, into);
     timer.end_gl();
 }

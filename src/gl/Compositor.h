@@ -66,6 +66,7 @@
 #include "gl/WaterPlane.h"
 #include "methods/TerrainMethod.h"
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -142,23 +143,30 @@ private:
     glm::vec4 terrain_shadow(const Environment& environment, StepTimer& timer);
     CompositeCounts compose(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
                             RenderTarget& target, StepTimer& timer, const CompositeOptions& options);
+    // Where the objects' shadow pass darkens a ray-cast image, worked out
+    // once per frame (by stage() for its slot, or by draw()).
+    struct ShadowReach {
+        std::vector<PixelRect> rects; // each caster's reach on screen, as disjoint rectangles; none: no pass
+        PixelRect rect;               // their bounding rectangle
+    };
     // Loads the images (staged now from `out` when given, else from `slot`) into `into`.
-    void draw_images(const MethodOutput* out, int slot, const Camera& camera, const Environment& environment,
+    void draw_images(const MethodOutput* out, int slot, const Camera& camera, const ShadowReach& reach,
                      RenderTarget& into, StepTimer& timer, const CompositeOptions& options);
-    // Where the objects' shadow pass darkens the ray-cast image (none when it
-    // does not run): each caster's reach on screen, as disjoint rectangles.
-    std::vector<PixelRect> object_shadow_rects(const Camera& camera, const Environment& environment,
-                                               const CompositeOptions& options) const;
+    // Fills `reach` for a frame (nothing when the pass does not run).
+    void object_shadow_reach(const Camera& camera, const Environment& environment, const CompositeOptions& options,
+                             ShadowReach& reach) const;
+    PixelRect depth_rect(const Camera& camera, const CompositeOptions& options, const PixelRect& shadow_rect) const;
     // A height below every terrain sample under `box`'s footprint (from the
     // terrain's per-block minima), at least the terrain's lowest.
     float floor_under(const WorldBox& box) const;
     long long draw_surface(const MethodOutput& out, const Camera& camera, StepTimer& timer, CompositeCounts& counts);
 
     const Terrain& terrain_;
-    const float terrain_min_; // Terrain::min_height(), which reads every sample
     static constexpr int kFloorBlock = 32; // samples per side of a block of block_min_
     int block_rows_ = 0, block_cols_ = 0;
     std::vector<float> block_min_; // the lowest sample of each block, row-major
+    float terrain_min_ = 0;        // the lowest of block_min_: the terrain's lowest sample
+    float object_texel_ = 0;       // ObjectShadowMap::texel_bound of the objects' map
     FrameUniforms frame_;
     SharedSunShadow* shared_shadow_ = nullptr; // share_sun_shadow()
     ShadowCeiling shadow_;                     // without shared_shadow_
@@ -180,6 +188,8 @@ private:
     std::unique_ptr<BlockTerrain> blocks_;
     ImageStream stream_;
     int next_slot_ = 0;
+    std::array<ShadowReach, ImageStream::kSlots> staged_reach_; // stage()'s, per slot
+    ShadowReach drawn_reach_;                                   // draw()'s
     std::unique_ptr<RenderTarget> images_; // a window's Images composite, blitted to it
 };
 

@@ -47,6 +47,20 @@ std::vector<WorldBox> ObjectShadowMap::reach(const std::vector<WorldBox>& object
     return out;
 }
 
+float ObjectShadowMap::texel_bound(const std::vector<WorldBox>& boxes, int size) {
+    if (boxes.empty()) return 0.0f;
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const WorldBox& b : boxes) {
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+    }
+    // begin_pass() maps the boxes' extent across the sun's view, at most
+    // their diagonal, plus a margin of a texel and 0.01 on each side, onto
+    // `size` texels.
+    const float extent = glm::length(hi - lo);
+    return (extent * (1.0f + 2.0f / float(size)) + 0.02f) / float(size);
+}
+
 bool ObjectShadowMap::begin_pass(bool on, const glm::vec3& sun, const std::vector<WorldBox>& boxes, bool changed,
                                  const FrameBlock& frame) {
     const bool want = on && sun.y > 0 && !boxes.empty();

@@ -76,6 +76,10 @@ public:
     // The world boxes that hold every point an object's shadow may fall on:
     // each of `objects` extended along the sun's rays down to `floor`.
     static std::vector<WorldBox> reach(const std::vector<WorldBox>& objects, const glm::vec3& sun_dir, float floor);
+    // A world length no texel of a map of `size` texels fitted to `boxes`
+    // exceeds, whatever the sun: the filtered lookup reads the texels within
+    // one of a point, so a shadow reaches that far past its caster's bounds.
+    static float texel_bound(const std::vector<WorldBox>& boxes, int size);
 
 private:
     // Whether to draw into the map now (its framebuffer bound, its own
