@@ -6,6 +6,7 @@
 #include "core/Error.h"
 #include "core/Shading.h"
 #include "io/Gdal.h"
+#include "io/Files.h"
 #include "io/GdalSource.h"
 #include "io/HeightMapping.h"
 #include "io/ImageryRaster.h"
@@ -627,6 +628,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         if (name.rfind("." + own_prefix, 0) == 0) return true; // a temporary of its record
         return std::sscanf(name.c_str(), ".r%d_c", &r) == 1 && r >= first_row && r < end_row;
     });
+    FolderSync tiles_on_device(dir);
     const bool resume = resumable(dir, ix);
     ix.complete = false;
     write_index(dir, ix);
@@ -739,6 +741,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
     report.skipped = skipped;
     report.empty = empty;
 
+    tiles_on_device.sync();
     write_part_record(dir, rec);
     auto [merged, complete] = merge_tile_parts(dir, part.count, false);
     if (complete) {
