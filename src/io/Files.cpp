@@ -116,7 +116,8 @@ void write_file_atomically(const std::string& path, const void* data, std::size_
     });
 }
 
-FolderSync::FolderSync(const std::string& folder) : fd_(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)), folder_(folder) {
+FolderSync::FolderSync(const std::string& folder)
+    : fd_(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)), folder_(folder) {
     if (fd_ < 0) throw Error(folder, "cannot open: " + errno_text(errno));
 }
 

@@ -5,8 +5,8 @@
 
 #include "core/Error.h"
 #include "core/Shading.h"
-#include "io/Gdal.h"
 #include "io/Files.h"
+#include "io/Gdal.h"
 #include "io/GdalSource.h"
 #include "io/HeightMapping.h"
 #include "io/ImageryRaster.h"
