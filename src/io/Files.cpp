@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <system_error>
 #include <unistd.h>
@@ -66,11 +67,11 @@ void CheckedFile::write(const void* data, std::size_t size) {
     if (std::fwrite(data, 1, size, file_) != size) error_ = errno != 0 ? errno : EIO;
 }
 
-void CheckedFile::close() {
+void CheckedFile::close(FileSync sync) {
     std::FILE* f = file_;
     file_ = nullptr;
     if (error_ == 0 && std::fflush(f) != 0) error_ = errno;
-    if (error_ == 0 && ::fsync(::fileno(f)) != 0) error_ = errno;
+    if (error_ == 0 && sync == FileSync::Now && ::fsync(::fileno(f)) != 0) error_ = errno;
     if (std::fclose(f) != 0 && error_ == 0) error_ = errno;
     if (error_ != 0) throw Error(subject_, "cannot write: " + errno_text(error_));
 }
@@ -107,8 +108,23 @@ void write_atomically(const std::string& path, const std::function<void(const st
     }
 }
 
-void write_file_atomically(const std::string& path, const void* data, std::size_t size) {
-    write_file_atomically(path, [&](CheckedFile& file) { file.write(data, size); });
+void write_file_atomically(const std::string& path, const void* data, std::size_t size, FileSync sync) {
+    write_atomically(path, [&](const std::string& temp) {
+        CheckedFile file(temp, path);
+        file.write(data, size);
+        file.close(sync);
+    });
+}
+
+FolderSync::FolderSync(const std::string& folder)
+    : fd_(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)), folder_(folder) {
+    if (fd_ < 0) throw Error(folder, "cannot open: " + errno_text(errno));
+}
+
+FolderSync::~FolderSync() { ::close(fd_); }
+
+void FolderSync::sync() {
+    if (::syncfs(fd_) != 0) throw Error(folder_, "cannot write: " + errno_text(errno));
 }
 
 } // namespace overflight

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <unistd.h>
 
@@ -95,6 +96,14 @@ Dataset create_mem(const std::string& subject, int cols, int rows, int bands, GD
     if (geotransform) GDALSetGeoTransform(ds.get(), const_cast<double*>(geotransform));
     if (!wkt.empty()) GDALSetProjection(ds.get(), wkt.c_str());
     return ds;
+}
+
+void fill_nodata(GDALRasterBandH band, int distance, const std::string& subject) {
+    const std::unique_ptr<char*, decltype(&CSLDestroy)> options(CSLSetNameValue(nullptr, "TEMP_FILE_DRIVER", "MEM"),
+                                                                &CSLDestroy);
+    CPLErrorReset();
+    if (GDALFillNodata(band, nullptr, double(distance), 0, 0, options.get(), nullptr, nullptr) != CE_None)
+        throw Error(subject, "cannot fill no-data: " + last_error("GDALFillNodata failed"));
 }
 
 namespace {

@@ -31,6 +31,13 @@ Dataset open_raster(const std::string& path);
 Dataset create_mem(const std::string& subject, int cols, int rows, int bands, GDALDataType type,
                    const double* geotransform = nullptr, const std::string& wkt = "");
 
+// GDALFillNodata over `band` (its no-data value marks the voids) searching up
+// to `distance` samples, with its work planes in memory: its default is LZW
+// GeoTIFFs in the working directory (or CPL_TMPDIR) written and read back on
+// every call; the same algorithm on the same numbers gives the same fill.
+// Error(subject, "cannot fill no-data: ...") on failure.
+void fill_nodata(GDALRasterBandH band, int distance, const std::string& subject);
+
 // GDALTranslate / GDALWarp to an in-memory dataset with gdal_translate /
 // gdalwarp command-line options (the "-of MEM" is added here). Error(subject, ...) on failure.
 Dataset translate(GDALDatasetH src, const std::vector<std::string>& options, const std::string& subject);

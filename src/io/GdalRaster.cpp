@@ -137,9 +137,7 @@ Grid decimated_grid_of(GDALDatasetH ds, const std::string& path, int factor) {
 void fill_within(Grid& g, int distance, const std::string& subject) {
     gdal::Dataset ds = grid_dataset(g, subject);
     GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
-    CPLErrorReset();
-    if (GDALFillNodata(band, nullptr, double(distance), 0, 0, nullptr, nullptr, nullptr) != CE_None)
-        throw Error(subject, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
+    gdal::fill_nodata(band, distance, subject);
     read_band(band, g.cols, g.rows, g.z, subject);
 }
 

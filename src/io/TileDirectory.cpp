@@ -158,6 +158,7 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
     TileIndex& ix = report.index;
     ix = plan_index(data, options);
     prepare_folder(dir);
+    FolderSync tiles_on_device(dir);
     const bool resume = resumable(dir, ix);
     ix.complete = false;
     write_index(dir, ix);
@@ -207,6 +208,7 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
     ix.grid.roughness = std::move(roughness);
     ix.grid.max_level = ix.levels;
     ix.complete = true;
+    tiles_on_device.sync();
     write_index(dir, ix);
     return report;
 }

@@ -77,7 +77,11 @@
 // its files reads back exactly what it would write (a truncated or foreign
 // file is rewritten), so that it ends byte-identical to an uninterrupted
 // run; index.json is rewritten with complete = true at the very end, and
-// readers refuse an incomplete directory.
+// readers refuse an incomplete directory. The tile files are not synced to
+// the device one by one (an fsync each cost more than making them): one
+// syncfs of the folder precedes the complete index.json or a part's record,
+// so a crash before it leaves at worst tiles a re-run finds broken and
+// rewrites.
 // Readers check index.json against the format's limits and itself
 // (io/TileIndex.h) and each file's raster size, bands and type against the
 // index before allocating anything from them; a tile whose heights leave

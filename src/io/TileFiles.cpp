@@ -106,7 +106,7 @@ TileContent::TileContent(const std::string& dir, const TileIndex& ix, int r, int
 }
 
 void TileContent::write() const {
-    for (const auto& [path, spec] : files_) write_geotiff(path, spec);
+    for (const auto& [path, spec] : files_) write_geotiff(path, spec, FileSync::Later);
 }
 bool TileContent::on_disk() const {
     return std::all_of(files_.begin(), files_.end(), [](const auto& f) { return geotiff_matches(f.first, f.second); });

@@ -51,6 +51,8 @@ public:
     TileContent(const TileContent&) = delete;
     TileContent& operator=(const TileContent&) = delete;
 
+    // Writes the files with FileSync::Later: the caller's FolderSync makes
+    // them durable before an index or a part record says the tile is done.
     void write() const;
     // Whether every file already holds exactly this content.
     bool on_disk() const;

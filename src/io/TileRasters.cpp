@@ -149,10 +149,10 @@ bool band_matches(GDALRasterBandH band, const RasterSpec& spec, int b) {
 
 } // namespace
 
-void write_geotiff(const std::string& path, const RasterSpec& spec) {
+void write_geotiff(const std::string& path, const RasterSpec& spec, FileSync sync) {
     gdal::ensure_initialised();
     const std::vector<std::uint8_t> bytes = encode_geotiff(path, spec);
-    write_file_atomically(path, bytes.data(), bytes.size());
+    write_file_atomically(path, bytes.data(), bytes.size(), sync);
 }
 
 bool geotiff_matches(const std::string& path, const RasterSpec& spec) {

@@ -6,6 +6,7 @@
 // it would write; readers check a file's raster size, band count and type
 // against the index before any buffer is sized from them.
 #include "core/TileGrid.h"
+#include "io/Files.h"
 #include "io/Gdal.h"
 
 #include <array>
@@ -35,8 +36,9 @@ struct RasterSpec {
 };
 
 // Writes `spec` to `path` (DEFLATE GeoTIFF). Throws Error(path, ...), e.g.
-// "cannot write: no space left on device"; `path` is then untouched.
-void write_geotiff(const std::string& path, const RasterSpec& spec);
+// "cannot write: no space left on device"; `path` is then untouched. With
+// FileSync::Later the caller's FolderSync makes it durable (io/Files.h).
+void write_geotiff(const std::string& path, const RasterSpec& spec, FileSync sync = FileSync::Now);
 
 // Whether `path` is a GeoTIFF holding exactly `spec`: raster size, bands,
 // type, geotransform, height mapping and every sample of every level.

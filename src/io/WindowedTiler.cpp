@@ -5,6 +5,7 @@
 
 #include "core/Error.h"
 #include "core/Shading.h"
+#include "io/Files.h"
 #include "io/Gdal.h"
 #include "io/GdalSource.h"
 #include "io/HeightMapping.h"
@@ -15,7 +16,6 @@
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
-#include <cpl_string.h>
 #include <gdal_alg.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -386,19 +386,15 @@ CutWindow cut_window(const Reader& rd, BlockCache& cache, const Plan& plan, int 
         const int bh = br1 - br0 + 1, bw = bc1 - bc0 + 1;
         std::vector<float> big(std::size_t(bh) * std::size_t(bw));
         cache.read(rd, br0, bc0, bh, bw, big.data(), bw);
-        // GDALFillNodata's work planes in memory (its default is LZW GeoTIFFs
-        // in the working directory, or CPL_TMPDIR, written and read back on
-        // every call): the same algorithm on the same numbers, the same fill.
-        const std::unique_ptr<char*, decltype(&CSLDestroy)> fill_options(
-            CSLSetNameValue(nullptr, "TEMP_FILE_DRIVER", "MEM"), &CSLDestroy);
         gdal::Dataset mem = gdal::create_mem(plan.path, bw, bh, 1, GDT_Float32);
         GDALRasterBandH band = GDALGetRasterBand(mem.get(), 1);
         GDALSetRasterNoDataValue(band, kNoData);
         CPLErrorReset();
-        if (GDALRasterIO(band, GF_Write, 0, 0, bw, bh, big.data(), bw, bh, GDT_Float32, 0, 0) != CE_None ||
-            GDALFillNodata(band, nullptr, double(d), 0, 0, fill_options.get(), nullptr, nullptr) != CE_None ||
-            GDALRasterIO(band, GF_Read, c0 - bc0, r0 - br0, w, h, z.data(), w, h, GDT_Float32, 0, 0) != CE_None)
-            throw Error(plan.path, "cannot fill no-data: " + gdal::last_error("GDALFillNodata failed"));
+        if (GDALRasterIO(band, GF_Write, 0, 0, bw, bh, big.data(), bw, bh, GDT_Float32, 0, 0) != CE_None)
+            throw Error(plan.path, "cannot fill no-data: " + gdal::last_error("I/O error"));
+        gdal::fill_nodata(band, d, plan.path);
+        if (GDALRasterIO(band, GF_Read, c0 - bc0, r0 - br0, w, h, z.data(), w, h, GDT_Float32, 0, 0) != CE_None)
+            throw Error(plan.path, "cannot fill no-data: " + gdal::last_error("I/O error"));
         for (float& v : z) {
             // Beyond the search distance: the lowest elevation, never a spike
             // (the loader's too for a void reaching the raster's border; it
@@ -627,6 +623,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         if (name.rfind("." + own_prefix, 0) == 0) return true; // a temporary of its record
         return std::sscanf(name.c_str(), ".r%d_c", &r) == 1 && r >= first_row && r < end_row;
     });
+    FolderSync tiles_on_device(dir);
     const bool resume = resumable(dir, ix);
     ix.complete = false;
     write_index(dir, ix);
@@ -739,6 +736,7 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
     report.skipped = skipped;
     report.empty = empty;
 
+    tiles_on_device.sync();
     write_part_record(dir, rec);
     auto [merged, complete] = merge_tile_parts(dir, part.count, false);
     if (complete) {

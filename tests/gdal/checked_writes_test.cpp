@@ -3,6 +3,7 @@
 // one line naming the file and "no space left on device", leave no temporary
 // file and keep the previous file as it was. Label gdal: the TIFF goes
 // through GDAL. The file systems are small tmpfs mounts (tests/SmallFilesystem.h).
+// Files synced later, with their folder (FolderSync), are whole at once.
 #include "SmallFilesystem.h"
 #include "TestSupport.h"
 #include "core/Error.h"
@@ -126,6 +127,28 @@ TEST(CheckedWrites, MissingFolderNamesTheFile) {
         EXPECT_NE(e.problem().find("does not exist"), std::string::npos) << e.problem();
     }
     EXPECT_TRUE(file_names_in(dir.path).empty());
+}
+
+// Files written with FileSync::Later (the tiles of a tile folder) are whole
+// at once under their final names; the folder's one sync then succeeds, and
+// a folder that cannot be opened is named before anything is written.
+TEST(CheckedWrites, FilesSyncedLaterWithTheirFolder) {
+    ScratchDir dir;
+    FolderSync later(dir.path);
+    const std::string text(100000, 'x');
+    for (int i = 0; i < 3; ++i)
+        write_file_atomically(dir / ("f" + std::to_string(i)), text.data(), text.size(), FileSync::Later);
+    later.sync();
+    EXPECT_EQ(file_names_in(dir.path), (std::set<std::string>{"f0", "f1", "f2"}));
+    EXPECT_EQ(read_file_text(dir / "f2"), text);
+    const std::string missing = dir / "no-such-folder";
+    try {
+        FolderSync bad(missing);
+        ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.subject(), missing);
+        EXPECT_NE(e.problem().find("no such file or directory"), std::string::npos) << e.problem();
+    }
 }
 
 TEST(CheckedWrites, ErrnoTextIsALowercasePhrase) {
