@@ -3,7 +3,7 @@
 // forward: frames counted over a window after a warm-up, for the ray
 // caster's view and for the WebGL2 mesh view. Run by bench/web_fps.sh.
 //
-//   node --experimental-websocket web_fps.mjs SITE [WxH] [SECONDS]
+//   node web_fps.mjs SITE [WxH] [SECONDS]
 import { Browser } from '../tests/web/browser.mjs';
 import { serve } from '../tests/web/serve.mjs';
 import { resolve } from 'node:path';

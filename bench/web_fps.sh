@@ -19,5 +19,5 @@ terrain=${1:-demo}
 shift || true
 "$exe" web "$terrain" "$@" -o "$scratch/site" >/dev/null
 echo "site: $(du -sb "$scratch/site" | cut -f1) bytes; load: $(uptime | sed 's/.*load average/load average/')"
-node --experimental-websocket --no-warnings bench/web_fps.mjs "$scratch/site" "${SIZE:-1280x720}" "${BENCH_SECONDS:-10}"
+node bench/web_fps.mjs "$scratch/site" "${SIZE:-1280x720}" "${BENCH_SECONDS:-10}"
 echo "after: $(uptime | sed 's/.*load average/load average/')"

@@ -15,6 +15,7 @@ packages=(
   libglm-dev libtbb-dev libcli11-dev libtomlplusplus-dev libstb-dev libtinyobjloader-dev
   libtinygltf-dev libimgui-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev xvfb xauth
   ffmpeg parallel pybind11-dev python3-dev python3-pybind11 python3-numpy python3-pytest python3-gdal
+  emscripten nodejs chromium
 )
 
 if [ "${OVERFLIGHT_SKIP_INSTALL:-0}" != 1 ]; then

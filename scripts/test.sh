@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the whole test suite as CI does: installs what is missing, builds with
-# -Werror, runs every CTest label (cpu, gdal, gl, window) on the Release build,
+# -Werror, runs every CTest label (cpu, gdal, gl, window, web) on the Release build,
 # builds examples/raycast_depth and the installed-header check against the
 # package installed into a fresh prefix, runs cpu and gdal again under
 # AddressSanitizer + UndefinedBehaviorSanitizer (without the four tiler runs
@@ -35,7 +35,7 @@ run_tests() {
 }
 
 OVERFLIGHT_CMAKE_ARGS="-DOVERFLIGHT_WERROR=ON" bash scripts/setup.sh
-echo "== tests (Release): cpu gdal gl window"
+echo "== tests (Release): cpu gdal gl window web"
 run_tests release
 
 echo "== installed package: examples/raycast_depth and tests/install from a fresh prefix"

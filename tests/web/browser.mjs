@@ -1,7 +1,10 @@
-// Headless Chromium driven over the DevTools protocol with nothing but Node 20
-// (its WebSocket client, behind --experimental-websocket): launch a browser in
-// a fresh profile, open pages, evaluate expressions in them. Shared by
-// site_test.mjs and bench/web_fps.mjs.
+// Headless Chromium driven over the DevTools protocol with nothing but Node
+// (18 as Debian 12 ships it, or later): launch a browser in a fresh profile,
+// open pages, evaluate expressions in them. The protocol runs over the pipe
+// pair Chromium offers with --remote-debugging-pipe (it reads commands on its
+// fd 3 and writes replies and events on its fd 4, each message one JSON text
+// ended by a NUL byte), so no WebSocket client and no npm package is needed.
+// Shared by site_test.mjs and bench/web_fps.mjs.
 //
 // Based on: the Chrome DevTools Protocol (Target, Page, Runtime domains; one
 // browser connection, pages attached as flat sessions).
@@ -30,25 +33,21 @@ export class Browser {
             '--disable-background-timer-throttling', '--disable-renderer-backgrounding',
             '--disable-backgrounding-occluded-windows',
             `--window-size=${width},${height}`, `--user-data-dir=${profile}`,
-            '--remote-debugging-port=0', 'about:blank',
+            '--remote-debugging-pipe', 'about:blank',
         ];
-        // Its own process group, so that close() stops its helper processes too.
-        const proc = spawn(CHROMIUM, args, { stdio: ['ignore', 'ignore', 'pipe'], detached: true });
-        let log = '';
-        const url = await new Promise((resolve, reject) => {
-            const timer = setTimeout(() => reject(new Error(`chromium did not start in 60 s:\n${log}`)), 60000);
-            proc.stderr.on('data', (chunk) => {
-                log += chunk;
-                const m = /DevTools listening on (ws:\/\/\S+)/.exec(log);
-                if (m) {
-                    clearTimeout(timer);
-                    resolve(m[1]);
-                }
-            });
-            proc.on('exit', (code) => reject(new Error(`chromium exited (${code}):\n${log}`)));
-        });
+        const proc = spawn(CHROMIUM, args, { stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] });
         const b = new Browser(proc, profile);
-        await b.connect(url);
+        proc.stderr.on('data', (chunk) => { b.log += chunk; });
+        proc.on('exit', (code) => {
+            for (const p of b.pending.values()) p.reject(new Error(`chromium exited (${code}):\n${b.log}`));
+            b.pending.clear();
+        });
+        b.connect();
+        // The first reply says the browser is up.
+        await Promise.race([
+            b.send('Browser.getVersion'),
+            new Promise((_, reject) => setTimeout(() => reject(new Error(`chromium did not start in 60 s:\n${b.log}`)), 60000)),
+        ]);
         return b;
     }
 
@@ -58,30 +57,35 @@ export class Browser {
         this.next = 1;
         this.pending = new Map();
         this.listeners = [];
+        this.log = '';
     }
 
-    connect(url) {
-        this.ws = new WebSocket(url);
-        this.ws.onmessage = (e) => {
-            const msg = JSON.parse(e.data);
-            if (msg.id !== undefined) {
-                const p = this.pending.get(msg.id);
-                this.pending.delete(msg.id);
-                if (msg.error) p.reject(new Error(`${p.method}: ${msg.error.message}`));
-                else p.resolve(msg.result);
-            } else {
-                for (const l of this.listeners) l(msg);
+    connect() {
+        this.input = this.proc.stdio[3];
+        let buffered = Buffer.alloc(0);
+        this.proc.stdio[4].on('data', (chunk) => {
+            buffered = Buffer.concat([buffered, chunk]);
+            for (let end = buffered.indexOf(0); end >= 0; end = buffered.indexOf(0)) {
+                this.receive(JSON.parse(buffered.subarray(0, end).toString('utf8')));
+                buffered = buffered.subarray(end + 1);
             }
-        };
-        return new Promise((resolve, reject) => {
-            this.ws.onopen = resolve;
-            this.ws.onerror = () => reject(new Error(`cannot connect to ${url}`));
         });
+    }
+
+    receive(msg) {
+        if (msg.id !== undefined) {
+            const p = this.pending.get(msg.id);
+            this.pending.delete(msg.id);
+            if (msg.error) p.reject(new Error(`${p.method}: ${msg.error.message}`));
+            else p.resolve(msg.result);
+        } else {
+            for (const l of this.listeners) l(msg);
+        }
     }
 
     send(method, params = {}, sessionId = undefined) {
         const id = this.next++;
-        this.ws.send(JSON.stringify({ id, method, params, sessionId }));
+        this.input.write(JSON.stringify({ id, method, params, sessionId }) + '\0');
         return new Promise((resolve, reject) => this.pending.set(id, { resolve, reject, method }));
     }
 
@@ -108,33 +112,16 @@ export class Browser {
         } catch {
             // Closed already.
         }
-        this.ws.close();
-        // The profile is removed once Chromium and its helpers have stopped
-        // writing into it.
-        const group = (signal) => {
-            try {
-                process.kill(-this.proc.pid, signal);
-            } catch {
-                // None left.
-            }
-        };
+        this.input.end();
+        // The profile is removed once Chromium has stopped writing into it.
         if (this.proc.exitCode === null) {
             const exited = new Promise((r) => this.proc.once('exit', r));
-            group('SIGTERM');
-            const timer = setTimeout(() => group('SIGKILL'), 10000);
+            this.proc.kill();
+            const timer = setTimeout(() => this.proc.kill('SIGKILL'), 10000);
             await exited;
             clearTimeout(timer);
         }
-        group('SIGKILL');
-        for (let attempt = 0; ; ++attempt) {
-            try {
-                rmSync(this.profile, { recursive: true, force: true });
-                break;
-            } catch (e) {
-                if (attempt === 20) throw e;
-                await new Promise((r) => setTimeout(r, 250));
-            }
-        }
+        rmSync(this.profile, { recursive: true, force: true, maxRetries: 3 });
     }
 }
 

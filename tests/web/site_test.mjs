@@ -10,7 +10,7 @@
 // Exits 77 (CTest: Skipped) when Chromium or the WebAssembly engine
 // (scripts/build_web.sh) is missing.
 //
-//   node --experimental-websocket site_test.mjs --exe build/release/apps/overflight --web build/web
+//   node site_test.mjs --exe build/release/apps/overflight --web build/web
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, statSync, readdirSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
