@@ -114,14 +114,27 @@ export class Browser {
         }
         this.input.end();
         // The profile is removed once Chromium has stopped writing into it.
-        if (this.proc.exitCode === null) {
+        if (this.proc.exitCode === null && this.proc.signalCode === null) {
             const exited = new Promise((r) => this.proc.once('exit', r));
             this.proc.kill();
             const timer = setTimeout(() => this.proc.kill('SIGKILL'), 10000);
             await exited;
             clearTimeout(timer);
         }
-        rmSync(this.profile, { recursive: true, force: true, maxRetries: 3 });
+        // Its helper processes can outlive the browser by a moment, still
+        // writing into the profile: retry for a few seconds, then leave it.
+        for (let attempt = 0; ; ++attempt) {
+            try {
+                rmSync(this.profile, { recursive: true, force: true });
+                return;
+            } catch (e) {
+                if (attempt === 50) {
+                    console.error(`could not remove ${this.profile}: ${e.message}`);
+                    return;
+                }
+                await new Promise((r) => setTimeout(r, 100));
+            }
+        }
     }
 }
 
