@@ -4,6 +4,7 @@
 #include "core/Error.h"
 #include "core/TerrainDecimation.h"
 #include "core/WebTerrainFormat.h"
+#include "gl/AtmosphereGlsl.h"
 #include "gl/ObjectGeometry.h"
 #include "io/Files.h"
 
@@ -12,6 +13,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <filesystem>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -161,6 +163,8 @@ WebSiteReport write_web_site(const DataSet& data, const std::string& source, con
     const std::string json =
         site_json(site.terrain, source, report.decimation, terrain.size(), objects, object.size()).dump(1) + "\n";
     write_file_atomically((temp.path() / "site.json").string(), json.data(), json.size());
+    const std::string_view atmosphere = gl::kAtmosphereGlsl;
+    write_file_atomically((temp.path() / "atmosphere.glsl").string(), atmosphere.data(), atmosphere.size());
     for (const char* name : kEngineFiles) copy_into(o.engine_dir, name, temp.path());
     for (const char* name : kShellFiles) copy_into(o.shell_dir, name, temp.path());
     std::error_code ec;

@@ -13,6 +13,9 @@
 //                                  "OFTERR01")
 //   objects.bin                    the scene's objects as triangle and line
 //                                  arrays (format below), drawn by WebGL2
+//   atmosphere.glsl                the aerial perspective and sky of the
+//                                  native shaders (gl/AtmosphereGlsl.h), which
+//                                  the page's shaders include
 //   site.json                      the files' sizes (the progress bar), the
 //                                  source and its decimation
 //

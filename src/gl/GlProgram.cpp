@@ -2,7 +2,9 @@
 #include "gl/GlProgram.h"
 
 #include "core/Error.h"
+#include "gl/AtmosphereGlsl.h"
 
+#include <iterator>
 #include <string>
 
 namespace overflight::gl {
@@ -83,30 +85,10 @@ layout(binding = 13) uniform sampler2D imagery_pages;
 
 vec4 clip_of(vec3 world) { return view_proj * vec4(world - eye.xyz, 1.0); }
 
-// The aerial perspective and sky of core/AerialPerspective.h, term for term.
-float height_factor(float x) {
-    x = max(x, -40.0);
-    return abs(x) < 1e-3 ? 1.0 - x * (0.5 - x / 6.0) : (1.0 - exp(-x)) / x;
-}
-vec3 haze_color(float c) {
-    float g = air_rayleigh.a;
-    float rayleigh = 0.75 * (1.0 + c * c);
-    float hg = (1.0 - g * g) / pow(1.0 + g * g - 2.0 * g * c, 1.5);
-    return pow(1.0 - exp(-(air_rayleigh.rgb * rayleigh + air_haze.rgb * hg)), vec3(1.0 / 2.2));
-}
-vec3 aerial(vec3 color, vec3 world) {
-    vec3 v = world - eye.xyz;
-    float d = length(v);
-    if (!(d > 0.0)) return color;
-    vec3 t = exp(-air_beta.rgb * (d * height_factor(v.y / air_beta.a)));
-    return color * t + (1.0 - t) * haze_color(dot(v, sun_dir.xyz) / d);
-}
-vec3 air_sky(vec3 dir) {
-    vec3 u = normalize(dir);
-    vec3 opacity = u.y > 0.0 ? pow(1.0 - exp(-air_beta.rgb * (air_beta.a / u.y)), vec3(1.0 / 2.2)) : vec3(1.0);
-    return opacity * haze_color(dot(u, sun_dir.xyz));
-}
+)";
 
+// After the atmosphere (gl/AtmosphereGlsl.h), which reads the Frame block.
+const char* const kFrameFunctionsGlsl = R"(
 // `color` seen from the eye under the water through the part of the way to
 // `world` below the level (core/WaterSurface.h: underwater_path, underwater_color).
 vec3 under_water(vec3 color, vec3 world) {
@@ -213,8 +195,9 @@ GLuint compile(const char* name, GLenum stage, const char* source) {
     const GLuint s = glCreateShader(stage);
     // Derivatives (terrain_albedo's imagery tiles) exist in fragment shaders only.
     const char* stage_define = stage == GL_FRAGMENT_SHADER ? "#define OVERFLIGHT_FRAGMENT_STAGE 1\n" : "";
-    const char* parts[] = {"#version 450 core\n", stage_define, kFrameGlsl, source};
-    glShaderSource(s, 4, parts, nullptr);
+    const char* parts[] = {"#version 450 core\n", stage_define, kFrameGlsl, kAtmosphereGlsl, kFrameFunctionsGlsl,
+                           source};
+    glShaderSource(s, GLsizei(std::size(parts)), parts, nullptr);
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);

@@ -37,7 +37,8 @@ struct FakeEngine {
     ~FakeEngine() { ::unsetenv("OVERFLIGHT_WEB_ENGINE_DIR"); }
 };
 
-const std::set<std::string> kSiteFiles = {"index.html",
+const std::set<std::string> kSiteFiles = {"atmosphere.glsl",
+                                          "index.html",
                                           "objects.bin",
                                           "overflight.js",
                                           "overflight_engine.js",

@@ -122,7 +122,7 @@ try {
     overflight('web', ...DEMO, '--scene', scene, '-o', site);
     const writeSeconds = (Date.now() - t0) / 1000;
     const siteBytes = readdirSync(site).reduce((sum, f) => sum + statSync(join(site, f)).size, 0);
-    check(['index.html', 'objects.bin', 'overflight.js', 'overflight_engine.js', 'overflight_engine.wasm', 'site.json',
+    check(['atmosphere.glsl', 'index.html', 'objects.bin', 'overflight.js', 'overflight_engine.js', 'overflight_engine.wasm', 'site.json',
            'terrain.bin'].every((f) => existsSync(join(site, f))), 'the site holds the page, the engine, terrain and objects');
 
     // The native view, whose camera the page then pins.

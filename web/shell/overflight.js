@@ -219,34 +219,15 @@ function compile(gl, vs, fs) {
 // mix(fog_color, lit, exp(-density |P - eye|)), or with the atmosphere the
 // aerial perspective of core/AerialPerspective.h (Hoffman, Preetham,
 // "Rendering Outdoor Light Scattering in Real Time", GDC 2002) with the
-// per-frame constants of aerialFrame().
-const kShadeGlsl = `
+// per-frame constants of aerialFrame(). `atmosphere` is the native shaders'
+// own GLSL of that aerial perspective and sky (the site's atmosphere.glsl,
+// gl/AtmosphereGlsl.h), so the formula is written once for every GPU.
+const shadeGlsl = (atmosphere) => `
 uniform mat4 view_proj; // eye-relative: multiplies (world - eye)
 uniform vec3 eye, sun_dir, sun_color, ambient, fog_color;
 uniform float fog_density, baked;
 uniform vec4 air_beta, air_rayleigh, air_haze; // air_haze.a = 1: the atmosphere replaces the fog
-float height_factor(float x) {
-    x = max(x, -40.0);
-    return abs(x) < 1e-3 ? 1.0 - x * (0.5 - x / 6.0) : (1.0 - exp(-x)) / x;
-}
-vec3 haze_color(float c) {
-    float g = air_rayleigh.a;
-    float rayleigh = 0.75 * (1.0 + c * c);
-    float hg = (1.0 - g * g) / pow(1.0 + g * g - 2.0 * g * c, 1.5);
-    return pow(1.0 - exp(-(air_rayleigh.rgb * rayleigh + air_haze.rgb * hg)), vec3(1.0 / 2.2));
-}
-vec3 aerial(vec3 color, vec3 world) {
-    vec3 v = world - eye;
-    float d = length(v);
-    if (!(d > 0.0)) return color;
-    vec3 t = exp(-air_beta.rgb * (d * height_factor(v.y / air_beta.a)));
-    return color * t + (1.0 - t) * haze_color(dot(v, sun_dir) / d);
-}
-vec3 air_sky(vec3 dir) {
-    vec3 u = normalize(dir);
-    vec3 opacity = u.y > 0.0 ? pow(1.0 - exp(-air_beta.rgb * (air_beta.a / u.y)), vec3(1.0 / 2.2)) : vec3(1.0);
-    return opacity * haze_color(dot(u, sun_dir));
-}
+${atmosphere}
 vec3 fogged(vec3 color, vec3 world) {
     return air_haze.a > 0.0 ? aerial(color, world) : mix(fog_color, color, exp(-fog_density * length(world - eye)));
 }
@@ -414,9 +395,10 @@ class Renderer {
         if (!gl) throw new Error('this browser has no WebGL2');
         this.gl = gl;
         this.environment = site.environment;
-        this.lit = compile(gl, kShadeGlsl + kLitVs, kShadeGlsl + kLitFs);
-        this.line = compile(gl, kShadeGlsl + kLitVs, kShadeGlsl + kLineFs);
-        this.sky = compile(gl, kSkyVs, kShadeGlsl + kSkyFs);
+        const shade = shadeGlsl(site.atmosphere);
+        this.lit = compile(gl, shade + kLitVs, shade + kLitFs);
+        this.line = compile(gl, shade + kLitVs, shade + kLineFs);
+        this.sky = compile(gl, kSkyVs, shade + kSkyFs);
         this.present = compile(gl, kSkyVs, kPresentFs);
         this.solids = new GlMesh(gl, objects.positions, objects.normals, objects.colors, objects.indices);
         this.lines = new GlMesh(gl, objects.linePoints, null, objects.lineColors, null);
@@ -668,19 +650,23 @@ async function main() {
     if (!siteResponse.ok) throw new Error(`site.json: ${siteResponse.status} ${siteResponse.statusText}`);
     const site = await siteResponse.json();
     const enginePromise = loadEngineScript().then(async ({ name, factory }) => ({ name, module: await factory() }));
-    const [terrainBytes, objectBytes] = await Promise.all([
+    const [terrainBytes, objectBytes, atmosphere] = await Promise.all([
         fetchBytes(site.terrain.file, site.terrain.bytes, (got, total) => {
             fill.style.width = `${(100 * got) / total}%`;
             status.textContent = `loading the terrain: ${(got / 1e6).toFixed(1)} of ${(total / 1e6).toFixed(1)} MB`;
         }),
         fetchBytes(site.objects.file, site.objects.bytes, () => {}),
+        fetch('atmosphere.glsl').then((r) => {
+            if (!r.ok) throw new Error(`atmosphere.glsl: ${r.status} ${r.statusText}`);
+            return r.text();
+        }),
     ]);
     status.textContent = 'starting the engine';
     const loaded = await enginePromise;
     const engine = new Engine(loaded.module);
     engine.loadTerrain(terrainBytes);
     const terrain = parseTerrain(terrainBytes);
-    const renderer = new Renderer(canvas, { environment: terrain.environment }, parseObjects(objectBytes));
+    const renderer = new Renderer(canvas, { environment: terrain.environment, atmosphere }, parseObjects(objectBytes));
     let mesh = null; // the comparison mesh, built on first use
 
     const fixed = /^(\d+)x(\d+)$/.exec(params.get('size') || '');
