@@ -105,8 +105,9 @@ struct BlockRay {
 // from the slice when the column is resolved. Where the light mask changes
 // between the previous slice's sample and this one, the rows below the point
 // where the mesh's light changes take this sample's color under the previous
-// one's light (FrontFace.h). This is the general case (bilinear surface, LOD and near
-// refinement); cast_blocks is the papers' case. The column starts at slice
+// one's light (FrontFace.h). This is the general case of level 0 (bilinear
+// surface, near refinement); cast_blocks is the papers' case, and
+// cast_level_blocks casts the LOD's coarser levels. The column starts at slice
 // k_from (at least its first) with the horizon at row j_from: where
 // cast_blocks left it after the LOD's evenly spaced slices; it stops before
 // slice k_to, where the LOD's coarser levels start (cast_level_blocks).
@@ -129,11 +130,11 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
     const double eye_gx = f.view.eye_gx, eye_gz = f.view.eye_gz;
     const Rgb8* other = t.other_colors;
     // The previous slice's sample (FrontFace.h): its position, the index of
-    // its color, its height and LOD level (-1: none, at the column's first slice).
+    // its color, its height; none at the column's first slice.
     double prev_x = 0, prev_z = 0;
     std::size_t prev_ci = 0;
     float prev_h = 0;
-    int prev_level = -1;
+    bool have_prev = false;
     int j = j_from;
     float mj = rows[j];
     int k = k0;
@@ -152,21 +153,16 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
                             std::llround(sz * kFixedOne), Footprint::Bilinear);
     int next_test = k0, j_at_test = j_from;
     long long skipped = 0;
-    // Uneven slices (LOD, near refinement) skip runs too, coarse then fine
+    // Uneven slices (near refinement, the LOD's level 0) skip runs too, coarse then fine
     // as cast_blocks does, each bounded from the box of the samples it reads
-    // (lod_run_top). coarse_from: the first slice where a coarse run may
+    // (run_top). coarse_from: the first slice where a coarse run may
     // start (a coarse run that failed its test is cast as fine runs).
     const bool skip_uneven = kVarying && f.skip_runs;
     int coarse_from = k0;
-    // The sample at slice k's position (gx, gz) on `level`: its height and the
-    // index of its color.
-    const auto sample = [&](double x, double z, int level, float& h) -> std::size_t {
+    // The sample at slice k's position (gx, gz): its height and the index of
+    // its color.
+    const auto sample = [&](double x, double z, float& h) -> std::size_t {
         const int ix = int(x + 0.5), iz = int(z + 0.5);
-        if (kVarying && level > 0) {
-            const std::size_t i = std::size_t(iz >> level) * std::size_t(t.level_cols[level]) + std::size_t(ix >> level);
-            h = float(t.level_heights[level][i]);
-            return i;
-        }
         if constexpr (kBilinear) {
             const int c0 = std::min(std::max(int(x), 0), cols - 2);
             const int r0 = std::min(std::max(int(z), 0), t.terrain.rows() - 2);
@@ -184,36 +180,34 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
     if (kVarying && k0 > f.columns.k0[std::size_t(c)] && k0 < k1) { // the previous slice's sample
         prev_x = eye_gx + slice_d[std::size_t(k0) - 1] * ux;
         prev_z = eye_gz + slice_d[std::size_t(k0) - 1] * uz;
-        prev_level = f.slices.level[std::size_t(k0) - 1];
-        prev_ci = sample(prev_x, prev_z, prev_level, prev_h);
+        have_prev = true;
+        prev_ci = sample(prev_x, prev_z, prev_h);
     }
     // The highest sample that slices [k, e] of this column can read: their
     // positions lie on the column's line in the order of their view depth,
     // so the samples they round to (nearest, or the four around a bilinear
-    // position) lie in the box of the first and last position's, widened to
-    // the cells of the run's coarsest level (levels never decrease along the
-    // column). 65535 (no bound) where a bilinear position may extrapolate
-    // (off the grid's inner area).
-    const auto lod_run_top = [&](int e) -> float {
-        const int L = f.slices.level[std::size_t(e)];
-        if (!kBilinear || f.slices.level[std::size_t(k)] > 0) return nearest_run_top(t, f, ux, uz, k, e, L);
+    // position) lie in the box of the first and last position's. 65535 (no
+    // bound) where a bilinear position may extrapolate (off the grid's inner
+    // area).
+    const auto run_top = [&](int e) -> float {
+        if constexpr (!kBilinear) return nearest_run_top(t, f, ux, uz, k, e, 0);
         const double xa = eye_gx + slice_d[std::size_t(k)] * ux, za = eye_gz + slice_d[std::size_t(k)] * uz;
         const double xb = eye_gx + slice_d[std::size_t(e)] * ux, zb = eye_gz + slice_d[std::size_t(e)] * uz;
         const double xl = std::min(xa, xb), xh = std::max(xa, xb), zl = std::min(za, zb), zh = std::max(za, zb);
         if (xl < 0 || zl < 0 || xh > cols - 1 || zh > t.terrain.rows() - 1) return 65535.0f;
         return level_box_top(t, int(xl), std::min(int(xh) + 1, cols - 1), int(zl),
-                             std::min(int(zh) + 1, t.terrain.rows() - 1), L);
+                             std::min(int(zh) + 1, t.terrain.rows() - 1), 0);
     };
     // Skips the n slices from k when none of them can rise above the
     // horizon: k becomes the run's last slice, which stands as the previous
     // sample of the next one (FrontFace.h).
     const auto skip_uneven_run = [&](int n) -> bool {
         const int e = k + n - 1;
-        if (e >= k1 || !run_below(ma, mb, k, n, lod_run_top(e), mj)) return false;
+        if (e >= k1 || !run_below(ma, mb, k, n, run_top(e), mj)) return false;
         prev_x = eye_gx + slice_d[std::size_t(e)] * ux;
         prev_z = eye_gz + slice_d[std::size_t(e)] * uz;
-        prev_level = f.slices.level[std::size_t(e)];
-        if (other) prev_ci = sample(prev_x, prev_z, prev_level, prev_h);
+        have_prev = true;
+        if (other) prev_ci = sample(prev_x, prev_z, prev_h);
         skipped += n;
         k = e;
         return true;
@@ -251,10 +245,10 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
                     gx += sx;
                     gz += sz;
                 }
-                if (other) prev_ci = sample(last_x, last_z, 0, prev_h);
+                if (other) prev_ci = sample(last_x, last_z, prev_h);
                 prev_x = last_x;
                 prev_z = last_z;
-                prev_level = 0;
+                have_prev = true;
                 k += kRunFine - 1;
                 skipped += kRunFine;
                 continue;
@@ -264,18 +258,16 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
             gx = eye_gx + slice_d[std::size_t(k)] * ux;
             gz = eye_gz + slice_d[std::size_t(k)] * uz;
         }
-        int level = 0;
-        if constexpr (kVarying) level = f.slices.level[std::size_t(k)];
         float h;
-        const std::size_t ci = sample(gx, gz, level, h);
+        const std::size_t ci = sample(gx, gz, h);
         const float sigma = h * ma[k] + mb[k];
         if (sigma > mj) {
-            const std::uint32_t word = (kVarying && level > 0) ? t.level_colors[level][ci] : colors[ci];
+            const std::uint32_t word = colors[ci];
             const std::uint32_t col = word & kRgbBits;
             // The rows below where the light changes take the previous sample's light.
             float below = -std::numeric_limits<float>::infinity();
             std::uint32_t near_col = col;
-            if (other && level == 0 && prev_level == 0 && light_changes(colors[prev_ci], word)) [[unlikely]] {
+            if (other && have_prev && light_changes(colors[prev_ci], word)) [[unlikely]] {
                 const double cross = cell_crossing(prev_x + 0.5, prev_z + 0.5, gx + 0.5, gz + 0.5,
                                                (word & kShadowedBit) == 0, [&](int cell_col, int cell_row) {
                                                    return (colors[std::size_t(cell_row) * std::size_t(cols) + std::size_t(cell_col)] &
@@ -299,7 +291,7 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
         prev_z = gz;
         prev_ci = ci;
         prev_h = h;
-        prev_level = level;
+        have_prev = true;
         if constexpr (!kVarying) {
             gx += sx;
             gz += sz;
@@ -673,12 +665,12 @@ template <std::ptrdiff_t kStride, bool kEvenRows>
 }
 
 // The distance LOD's coarser levels the same way, level after level, each
-// column continuing from the row (jend) where the finer slices left it:
-// cast_column<*, true>'s samples on those levels (nearest, on the level's
-// grid, at the positions it computes from the slice's view depth; no front
-// face's light changes there), so the same pixels. Its runs are bounded as
-// cast_column bounds them (nearest_run_top); the slices of level L are
-// [level_begin[L], level_begin[L + 1]).
+// column continuing from the row (jend) where the finer slices left it. A
+// level-L slice reads the level's cell of the nearest sample at the position
+// computed from its view depth (eye + d_k u, in double: not stepped, so the
+// same cell whatever came before); no front face's light changes there. A
+// run is bounded from the box of the samples it reads (nearest_run_top).
+// The slices of level L are [level_begin[L], level_begin[L + 1]).
 template <std::ptrdiff_t kStride, bool kEvenRows>
 [[gnu::always_inline]] inline long long cast_level_blocks(const CastTerrain& t, const CastFrame& f, int c0, int c1,
                                                           std::uint32_t* color, std::uint32_t* slice, int* jend,
