@@ -433,8 +433,8 @@ struct BlockCast {
     // horizon row j at position (gx, gz), after the sample of prev_word,
     // prev_raw. False when the column is full (jend written).
     // kLevel: the positions are not stepped but computed from the slice's
-    // view depth, as cast_column computes them (the column's direction ux,
-    // uz; gx, gz, sx, sz unused), and read on the level's grid.
+    // view depth (cast_level_blocks; the column's direction ux, uz; gx, gz,
+    // sx, sz unused), and read on the level's grid.
     [[gnu::always_inline]] bool cast_slices(int i, int& k, int ke, int& j, float& mj, std::int64_t& gx,
                                             std::int64_t& gz, std::int64_t sx, std::int64_t sz,
                                             std::uint32_t& prev_word, std::uint16_t& prev_raw, double ux = 0,
@@ -501,7 +501,8 @@ struct BlockCast {
     // skipped or cast. False when the column is done.
     // No sample of slices [k, e] of column r on the cast level can rise above the horizon m.
     [[gnu::always_inline]] bool level_below(const BlockRay& r, int k, int e, float m) const {
-        return frame.skip_runs && run_below(ma, mb, k, e - k + 1, nearest_run_top(terrain, frame, r.ux, r.uz, k, e, level), m);
+        return frame.skip_runs &&
+               run_below(ma, mb, k, e - k + 1, nearest_run_top(terrain, frame, r.ux, r.uz, k, e, level), m);
     }
 
     // cast_run on a coarser level: runs bounded from the box of the samples
