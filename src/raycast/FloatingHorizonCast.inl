@@ -50,10 +50,36 @@ constexpr double kFixedOne = 4294967296.0; // 32.32 fixed point
     return bound + (h * ma[k] + std::abs(mb[k])) * kRunSlack <= m;
 }
 
+// The highest sample in the box [x0, x1] x [z0, z1] (level-0 samples, x0,
+// z0 >= 0) widened to the cells of LOD level L that it touches: a bound on
+// the samples that nearest lookups on levels <= L in the box read.
+[[gnu::always_inline]] inline float level_box_top(const CastTerrain& t, int x0, int x1, int z0, int z1, int L) {
+    const int cell = (1 << L) - 1;
+    x0 &= ~cell;
+    z0 &= ~cell;
+    x1 = std::min(x1 | cell, t.terrain.cols() - 1);
+    z1 = std::min(z1 | cell, t.terrain.rows() - 1);
+    return float(box_max_height(t.max_pyramid, x0, x1, z0, z1));
+}
+
+// The highest sample that the nearest lookups of slices [k, e] of a column
+// (grid units per unit of view depth ux, uz) on levels <= L can read: their
+// positions lie on the column's line in the order of their view depth, so
+// the samples they round to lie in the box of the first and last position's.
+[[gnu::always_inline]] inline float nearest_run_top(const CastTerrain& t, const CastFrame& f, double ux, double uz,
+                                                    int k, int e, int L) {
+    const double* slice_d = f.slices.d.data();
+    const double xa = f.view.eye_gx + slice_d[k] * ux, za = f.view.eye_gz + slice_d[k] * uz;
+    const double xb = f.view.eye_gx + slice_d[e] * ux, zb = f.view.eye_gz + slice_d[e] * uz;
+    return level_box_top(t, std::max(int(std::min(xa, xb) + 0.5), 0), int(std::max(xa, xb) + 0.5),
+                         std::max(int(std::min(za, zb) + 0.5), 0), int(std::max(za, zb) + 0.5), L);
+}
+
 // One column of cast_blocks between two of its turns: the state of
 // Algorithm 1 (horizon row j, next slice k) and of its run skipping.
 struct BlockRay {
     std::int64_t gx = 0, gz = 0, sx = 0, sz = 0; // position of slice k and step, 32.32, offset by half a cell
+    double ux = 0, uz = 0; // a coarser LOD level's cast: grid units per unit of view depth (Columns)
     SliceRunBound coarse, fine;
     int k = 0, k1 = 0; // next slice (the start of a coarse run), end of the column
     int k_first = 0;   // the column's first slice
@@ -79,15 +105,19 @@ struct BlockRay {
 // from the slice when the column is resolved. Where the light mask changes
 // between the previous slice's sample and this one, the rows below the point
 // where the mesh's light changes take this sample's color under the previous
-// one's light (FrontFace.h). This is the general case (bilinear surface, LOD and near
-// refinement); cast_blocks is the papers' case. The column starts at slice
+// one's light (FrontFace.h). This is the general case of level 0 (bilinear
+// surface, near refinement); cast_blocks is the papers' case, and
+// cast_level_blocks casts the LOD's coarser levels. The column starts at slice
 // k_from (at least its first) with the horizon at row j_from: where
-// cast_blocks left it after the LOD's evenly spaced slices.
+// cast_blocks left it after the LOD's evenly spaced slices; it stops before
+// slice k_to, where the LOD's coarser levels start (cast_level_blocks).
 template <bool kBilinear, bool kVarying>
 int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* color, std::uint32_t* slice,
-                std::ptrdiff_t stride, long long& visited, int k_from = 0, int j_from = 0) {
+                std::ptrdiff_t stride, long long& visited, int k_from = 0, int j_from = 0,
+                int k_to = std::numeric_limits<int>::max()) {
     const std::vector<double>& slice_d = f.slices.d;
-    const int k0 = std::max(f.columns.k0[std::size_t(c)], k_from), k1 = f.columns.k1[std::size_t(c)];
+    const int k0 = std::max(f.columns.k0[std::size_t(c)], k_from);
+    const int k1 = std::min(f.columns.k1[std::size_t(c)], k_to);
     const double ux = f.columns.ux[std::size_t(c)], uz = f.columns.uz[std::size_t(c)];
     const int cols = t.terrain.cols();
     const std::uint16_t* heights = t.terrain.heights().data();
@@ -100,11 +130,11 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
     const double eye_gx = f.view.eye_gx, eye_gz = f.view.eye_gz;
     const Rgb8* other = t.other_colors;
     // The previous slice's sample (FrontFace.h): its position, the index of
-    // its color, its height and LOD level (-1: none, at the column's first slice).
+    // its color, its height; none at the column's first slice.
     double prev_x = 0, prev_z = 0;
     std::size_t prev_ci = 0;
     float prev_h = 0;
-    int prev_level = -1;
+    bool have_prev = false;
     int j = j_from;
     float mj = rows[j];
     int k = k0;
@@ -123,21 +153,16 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
                             std::llround(sz * kFixedOne), Footprint::Bilinear);
     int next_test = k0, j_at_test = j_from;
     long long skipped = 0;
-    // Uneven slices (LOD, near refinement) skip runs too, coarse then fine
+    // Uneven slices (near refinement, the LOD's level 0) skip runs too, coarse then fine
     // as cast_blocks does, each bounded from the box of the samples it reads
-    // (lod_run_top). coarse_from: the first slice where a coarse run may
+    // (run_top). coarse_from: the first slice where a coarse run may
     // start (a coarse run that failed its test is cast as fine runs).
     const bool skip_uneven = kVarying && f.skip_runs;
     int coarse_from = k0;
-    // The sample at slice k's position (gx, gz) on `level`: its height and the
-    // index of its color.
-    const auto sample = [&](double x, double z, int level, float& h) -> std::size_t {
+    // The sample at slice k's position (gx, gz): its height and the index of
+    // its color.
+    const auto sample = [&](double x, double z, float& h) -> std::size_t {
         const int ix = int(x + 0.5), iz = int(z + 0.5);
-        if (kVarying && level > 0) {
-            const std::size_t i = std::size_t(iz >> level) * std::size_t(t.level_cols[level]) + std::size_t(ix >> level);
-            h = float(t.level_heights[level][i]);
-            return i;
-        }
         if constexpr (kBilinear) {
             const int c0 = std::min(std::max(int(x), 0), cols - 2);
             const int r0 = std::min(std::max(int(z), 0), t.terrain.rows() - 2);
@@ -155,50 +180,34 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
     if (kVarying && k0 > f.columns.k0[std::size_t(c)] && k0 < k1) { // the previous slice's sample
         prev_x = eye_gx + slice_d[std::size_t(k0) - 1] * ux;
         prev_z = eye_gz + slice_d[std::size_t(k0) - 1] * uz;
-        prev_level = f.slices.level[std::size_t(k0) - 1];
-        prev_ci = sample(prev_x, prev_z, prev_level, prev_h);
+        have_prev = true;
+        prev_ci = sample(prev_x, prev_z, prev_h);
     }
     // The highest sample that slices [k, e] of this column can read: their
     // positions lie on the column's line in the order of their view depth,
     // so the samples they round to (nearest, or the four around a bilinear
-    // position) lie in the box of the first and last position's, widened to
-    // the cells of the run's coarsest level (levels never decrease along the
-    // column). 65535 (no bound) where a bilinear position may extrapolate
-    // (off the grid's inner area).
-    const auto lod_run_top = [&](int e) -> float {
+    // position) lie in the box of the first and last position's. 65535 (no
+    // bound) where a bilinear position may extrapolate (off the grid's inner
+    // area).
+    const auto run_top = [&](int e) -> float {
+        if constexpr (!kBilinear) return nearest_run_top(t, f, ux, uz, k, e, 0);
         const double xa = eye_gx + slice_d[std::size_t(k)] * ux, za = eye_gz + slice_d[std::size_t(k)] * uz;
         const double xb = eye_gx + slice_d[std::size_t(e)] * ux, zb = eye_gz + slice_d[std::size_t(e)] * uz;
         const double xl = std::min(xa, xb), xh = std::max(xa, xb), zl = std::min(za, zb), zh = std::max(za, zb);
-        int x0, x1, z0, z1;
-        if (kBilinear && f.slices.level[std::size_t(k)] == 0) {
-            if (xl < 0 || zl < 0 || xh > cols - 1 || zh > t.terrain.rows() - 1) return 65535.0f;
-            x0 = int(xl);
-            z0 = int(zl);
-            x1 = std::min(int(xh) + 1, cols - 1);
-            z1 = std::min(int(zh) + 1, t.terrain.rows() - 1);
-        } else {
-            x0 = int(xl + 0.5);
-            z0 = int(zl + 0.5);
-            x1 = int(xh + 0.5);
-            z1 = int(zh + 0.5);
-        }
-        const int L = f.slices.level[std::size_t(e)], cell = (1 << L) - 1;
-        x0 = std::max(x0, 0) & ~cell;
-        z0 = std::max(z0, 0) & ~cell;
-        x1 = std::min(x1 | cell, cols - 1);
-        z1 = std::min(z1 | cell, t.terrain.rows() - 1);
-        return float(box_max_height(t.max_pyramid, x0, x1, z0, z1));
+        if (xl < 0 || zl < 0 || xh > cols - 1 || zh > t.terrain.rows() - 1) return 65535.0f;
+        return level_box_top(t, int(xl), std::min(int(xh) + 1, cols - 1), int(zl),
+                             std::min(int(zh) + 1, t.terrain.rows() - 1), 0);
     };
     // Skips the n slices from k when none of them can rise above the
     // horizon: k becomes the run's last slice, which stands as the previous
     // sample of the next one (FrontFace.h).
     const auto skip_uneven_run = [&](int n) -> bool {
         const int e = k + n - 1;
-        if (e >= k1 || !run_below(ma, mb, k, n, lod_run_top(e), mj)) return false;
+        if (e >= k1 || !run_below(ma, mb, k, n, run_top(e), mj)) return false;
         prev_x = eye_gx + slice_d[std::size_t(e)] * ux;
         prev_z = eye_gz + slice_d[std::size_t(e)] * uz;
-        prev_level = f.slices.level[std::size_t(e)];
-        if (other) prev_ci = sample(prev_x, prev_z, prev_level, prev_h);
+        have_prev = true;
+        if (other) prev_ci = sample(prev_x, prev_z, prev_h);
         skipped += n;
         k = e;
         return true;
@@ -236,10 +245,10 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
                     gx += sx;
                     gz += sz;
                 }
-                if (other) prev_ci = sample(last_x, last_z, 0, prev_h);
+                if (other) prev_ci = sample(last_x, last_z, prev_h);
                 prev_x = last_x;
                 prev_z = last_z;
-                prev_level = 0;
+                have_prev = true;
                 k += kRunFine - 1;
                 skipped += kRunFine;
                 continue;
@@ -249,18 +258,16 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
             gx = eye_gx + slice_d[std::size_t(k)] * ux;
             gz = eye_gz + slice_d[std::size_t(k)] * uz;
         }
-        int level = 0;
-        if constexpr (kVarying) level = f.slices.level[std::size_t(k)];
         float h;
-        const std::size_t ci = sample(gx, gz, level, h);
+        const std::size_t ci = sample(gx, gz, h);
         const float sigma = h * ma[k] + mb[k];
         if (sigma > mj) {
-            const std::uint32_t word = (kVarying && level > 0) ? t.level_colors[level][ci] : colors[ci];
+            const std::uint32_t word = colors[ci];
             const std::uint32_t col = word & kRgbBits;
             // The rows below where the light changes take the previous sample's light.
             float below = -std::numeric_limits<float>::infinity();
             std::uint32_t near_col = col;
-            if (other && level == 0 && prev_level == 0 && light_changes(colors[prev_ci], word)) [[unlikely]] {
+            if (other && have_prev && light_changes(colors[prev_ci], word)) [[unlikely]] {
                 const double cross = cell_crossing(prev_x + 0.5, prev_z + 0.5, gx + 0.5, gz + 0.5,
                                                (word & kShadowedBit) == 0, [&](int cell_col, int cell_row) {
                                                    return (colors[std::size_t(cell_row) * std::size_t(cols) + std::size_t(cell_col)] &
@@ -284,7 +291,7 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
         prev_z = gz;
         prev_ci = ci;
         prev_h = h;
-        prev_level = level;
+        have_prev = true;
         if constexpr (!kVarying) {
             gx += sx;
             gz += sz;
@@ -296,9 +303,13 @@ int cast_column(const CastTerrain& t, const CastFrame& f, int c, std::uint32_t* 
 
 // The state of cast_blocks' columns: set up for a block, then each column
 // takes turns casting one coarse run (cast_run). kMask: the terrain has a
-// light mask (FrontFace.h).
-template <std::ptrdiff_t kStride, bool kEvenRows, bool kMask>
+// light mask (FrontFace.h). kLevel: the slices of one coarser level of the
+// distance LOD (cast_level_blocks), each column continuing from the row
+// where it stopped.
+template <std::ptrdiff_t kStride, bool kEvenRows, bool kMask, bool kLevel = false>
 struct BlockCast {
+    static_assert(!(kLevel && kMask), "a coarser level's samples change no front face's light (FrontFace.h)");
+
     BlockRay rays[kBlock];
     int live[kBlock]; // the columns still casting, in order
     int n_live = 0;
@@ -321,22 +332,42 @@ struct BlockCast {
     const Rgb8* other; // CastTerrain::other_colors
     const SliceSlopes& slopes;
     const double* slice_d;
+    // kLevel: the level cast, what its runs are bounded with, the eye.
+    const int level;
+    const CastTerrain& terrain;
+    const CastFrame& frame;
+    const double eye_gx, eye_gz;
 
-    [[gnu::always_inline]] BlockCast(const CastTerrain& t, const CastFrame& frame, int c0, int c1,
+    // Columns [c0, c1) over slices [k_begin, k_end) of `level` (level 0: from
+    // each column's first slice, k_begin 0).
+    [[gnu::always_inline]] BlockCast(const CastTerrain& t, const CastFrame& f, int c0, int c1,
                                      std::uint32_t* out_color, std::uint32_t* out_slice, int* out_jend,
-                                     std::ptrdiff_t out_col_stride, int k_end)
+                                     std::ptrdiff_t out_col_stride, int cast_level, int k_begin, int k_end)
         : color(out_color), slice(out_slice), jend(out_jend), col_stride(out_col_stride),
-          cols(std::size_t(t.terrain.cols())), heights(t.terrain.heights().data()), colors(t.colors.data()),
-          ma(frame.slopes.a.data()), mb(frame.slopes.b.data()), smax(frame.slopes.smax.data()),
-          rows(frame.rows.m.data()), nrows(frame.rows.count), search(rows, kEvenRows ? nrows : 0),
-          guesses(frame.guesses.data()), other(t.other_colors), slopes(frame.slopes),
-          slice_d(frame.slices.d.data()) {
-        const std::vector<double>& slice_d = frame.slices.d;
-        const Columns& cc = frame.columns;
-        const double step = slice_d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
+          cols(std::size_t(t.level_cols[cast_level])), heights(t.level_heights[cast_level]),
+          colors(t.level_colors[cast_level]), ma(f.slopes.a.data()), mb(f.slopes.b.data()),
+          smax(f.slopes.smax.data()), rows(f.rows.m.data()), nrows(f.rows.count),
+          search(rows, kEvenRows ? nrows : 0), guesses(f.guesses.data()), other(t.other_colors), slopes(f.slopes),
+          slice_d(f.slices.d.data()), level(cast_level), terrain(t), frame(f), eye_gx(f.view.eye_gx),
+          eye_gz(f.view.eye_gz) {
+        const Columns& cc = f.columns;
+        const double step = f.slices.d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
         for (int c = c0; c < c1; ++c) {
             const std::size_t ic = std::size_t(c);
-            const int k0 = cc.k0[ic], k1 = std::min(cc.k1[ic], k_end);
+            const int k0 = std::max(cc.k0[ic], k_begin), k1 = std::min(cc.k1[ic], k_end);
+            if constexpr (kLevel) {
+                const int j = jend[c - c0];
+                if (k0 >= k1 || j >= nrows) continue;
+                BlockRay& r = rays[c - c0];
+                r.ux = cc.ux[ic];
+                r.uz = cc.uz[ic];
+                r.k = k0;
+                r.k1 = k1;
+                r.j = j;
+                r.hot = false;
+                live[n_live++] = c - c0;
+                continue;
+            }
             jend[c - c0] = 0;
             if (k0 >= k1 || nrows == 0) continue;
             BlockRay& r = rays[c - c0];
@@ -401,16 +432,26 @@ struct BlockCast {
     // Lines 5-16 of Algorithm 1 for the slices [k, ke) of column i, from
     // horizon row j at position (gx, gz), after the sample of prev_word,
     // prev_raw. False when the column is full (jend written).
+    // kLevel: the positions are not stepped but computed from the slice's
+    // view depth (cast_level_blocks; the column's direction ux, uz; gx, gz,
+    // sx, sz unused), and read on the level's grid.
     [[gnu::always_inline]] bool cast_slices(int i, int& k, int ke, int& j, float& mj, std::int64_t& gx,
                                             std::int64_t& gz, std::int64_t sx, std::int64_t sz,
-                                            std::uint32_t& prev_word, std::uint16_t& prev_raw) {
+                                            std::uint32_t& prev_word, std::uint16_t& prev_raw, double ux = 0,
+                                            double uz = 0) {
         std::uint32_t* const out_c = color + std::ptrdiff_t(i) * col_stride;
         std::uint32_t* const out_s = slice + std::ptrdiff_t(i) * col_stride;
         visited += ke - k;
         for (; k < ke; ++k) {
-            const std::size_t ci = std::size_t(gz >> 32) * cols + std::size_t(gx >> 32);
-            gx += sx;
-            gz += sz;
+            std::size_t ci;
+            if constexpr (kLevel) {
+                const double x = eye_gx + slice_d[k] * ux, z = eye_gz + slice_d[k] * uz;
+                ci = std::size_t(int(z + 0.5) >> level) * cols + std::size_t(int(x + 0.5) >> level);
+            } else {
+                ci = std::size_t(gz >> 32) * cols + std::size_t(gx >> 32);
+                gx += sx;
+                gz += sz;
+            }
             const std::uint16_t raw = heights[ci];
             const std::uint32_t word = colors[ci];
             const std::uint32_t col = kMask ? word & kRgbBits : word;
@@ -458,6 +499,49 @@ struct BlockCast {
     // One coarse run of column i (one turn of the loop of Algorithm 1 over
     // the column's runs): skipped whole, or split into fine runs that are
     // skipped or cast. False when the column is done.
+    // No sample of slices [k, e] of column r on the cast level can rise above the horizon m.
+    [[gnu::always_inline]] bool level_below(const BlockRay& r, int k, int e, float m) const {
+        return frame.skip_runs &&
+               run_below(ma, mb, k, e - k + 1, nearest_run_top(terrain, frame, r.ux, r.uz, k, e, level), m);
+    }
+
+    // cast_run on a coarser level: runs bounded from the box of the samples
+    // they read (nearest_run_top), cut short where the level's slices end.
+    [[gnu::always_inline]] bool cast_level_run(int i) {
+        BlockRay& r = rays[i];
+        int k = r.k, j = r.j;
+        float mj = rows[j];
+        if (k >= r.k1 || smax[k] <= mj) {
+            jend[i] = j;
+            return false;
+        }
+        bool hot = r.hot;
+        const int kc = std::min(k + kRunCoarse, r.k1);
+        if (!hot && level_below(r, k, kc - 1, mj)) {
+            r.k = kc;
+            return true;
+        }
+        std::int64_t unused_x = 0, unused_z = 0;
+        std::uint32_t unused_word = 0;
+        std::uint16_t unused_raw = 0;
+        while (k < kc) {
+            const int kf = std::min(k + kRunFine, kc);
+            if (!hot && level_below(r, k, kf - 1, mj)) {
+                k = kf;
+                continue;
+            }
+            const int j_before = j;
+            if (!cast_slices(i, k, kf, j, mj, unused_x, unused_z, 0, 0, unused_word, unused_raw, r.ux, r.uz))
+                return false;
+            mj = rows[j];
+            hot = j != j_before;
+        }
+        r.k = k;
+        r.j = j;
+        r.hot = hot;
+        return true;
+    }
+
     [[gnu::always_inline]] bool cast_run(int i) {
         BlockRay& r = rays[i];
         int k = r.k, j = r.j;
@@ -521,7 +605,7 @@ struct BlockCast {
         while (n_live > 0) {
             int kept = 0;
             for (int n = 0; n < n_live; ++n)
-                if (cast_run(live[n])) live[kept++] = live[n];
+                if (kLevel ? cast_level_run(live[n]) : cast_run(live[n])) live[kept++] = live[n];
             n_live = kept;
         }
         return visited;
@@ -574,11 +658,33 @@ template <std::ptrdiff_t kStride, bool kEvenRows>
                                                     std::ptrdiff_t col_stride) {
     const int k_end = f.slices.even;
     if (t.other_colors) {
-        BlockCast<kStride, kEvenRows, true> block(t, f, c0, c1, color, slice, jend, col_stride, k_end);
+        BlockCast<kStride, kEvenRows, true> block(t, f, c0, c1, color, slice, jend, col_stride, 0, 0, k_end);
         return block.run();
     }
-    BlockCast<kStride, kEvenRows, false> block(t, f, c0, c1, color, slice, jend, col_stride, k_end);
+    BlockCast<kStride, kEvenRows, false> block(t, f, c0, c1, color, slice, jend, col_stride, 0, 0, k_end);
     return block.run();
+}
+
+// The distance LOD's coarser levels the same way, level after level, each
+// column continuing from the row (jend) where the finer slices left it. A
+// level-L slice reads the level's cell of the nearest sample at the position
+// computed from its view depth (eye + d_k u, in double: not stepped, so the
+// same cell whatever came before); no front face's light changes there. A
+// run is bounded from the box of the samples it reads (nearest_run_top).
+// The slices of level L are [level_begin[L], level_begin[L + 1]).
+template <std::ptrdiff_t kStride, bool kEvenRows>
+[[gnu::always_inline]] inline long long cast_level_blocks(const CastTerrain& t, const CastFrame& f, int c0, int c1,
+                                                          std::uint32_t* color, std::uint32_t* slice, int* jend,
+                                                          std::ptrdiff_t col_stride, const int* level_begin,
+                                                          int levels) {
+    long long visited = 0;
+    for (int L = 1; L <= levels; ++L)
+        if (level_begin[L] < level_begin[L + 1]) {
+            BlockCast<kStride, kEvenRows, false, true> block(t, f, c0, c1, color, slice, jend, col_stride, L,
+                                                             level_begin[L], level_begin[L + 1]);
+            visited += block.run();
+        }
+    return visited;
 }
 
 [[gnu::always_inline]] inline long long cast_columns_body(const CastTerrain& t, const CastFrame& f,
@@ -587,32 +693,54 @@ template <std::ptrdiff_t kStride, bool kEvenRows>
                                                           std::ptrdiff_t row_stride) {
     const bool bil = surface == SurfaceModel::Bilinear;
     const bool uniform = f.slices.uniform;
+    if (row_stride != kBlock && row_stride != 1) throw std::logic_error("FloatingHorizon: unsupported scratch layout");
+    const bool even_rows = row_stride == kBlock && f.rows.even;
     long long visited = 0;
     // `blocks`: the evenly spaced slices (all of them, or the LOD's
-    // level-0 part) as cast_blocks; the LOD's coarser levels continue each
-    // column from where it left off.
+    // level-0 part) as cast_blocks.
     if (!bil && f.slices.even > 0) {
-        if (row_stride == kBlock && f.rows.even)
-            visited = cast_blocks<kBlock, true>(t, f, c0, c1, color, slice, jend, col_stride);
+        if (even_rows) visited = cast_blocks<kBlock, true>(t, f, c0, c1, color, slice, jend, col_stride);
         else if (row_stride == kBlock) visited = cast_blocks<kBlock, false>(t, f, c0, c1, color, slice, jend, col_stride);
-        else if (row_stride == 1) visited = cast_blocks<1, false>(t, f, c0, c1, color, slice, jend, col_stride);
-        else throw std::logic_error("FloatingHorizon: unsupported scratch layout");
+        else visited = cast_blocks<1, false>(t, f, c0, c1, color, slice, jend, col_stride);
         if (uniform) return visited;
+    }
+    if (uniform) { // bilinear
+        for (int c = c0; c < c1; ++c)
+            jend[c - c0] = cast_column<true, false>(t, f, c, color + std::ptrdiff_t(c - c0) * col_stride,
+                                                    slice + std::ptrdiff_t(c - c0) * col_stride, row_stride, visited);
+        return visited;
+    }
+    // Uneven slices: the rest of level 0 column by column, continuing each
+    // column from where it left off, then the LOD's coarser levels as blocks.
+    // Levels never decrease along the slices.
+    const std::vector<std::uint8_t>& lv = f.slices.level;
+    int level_begin[CastTerrain::kMaxLevels + 1];
+    int levels = 0;
+    level_begin[0] = 0;
+    level_begin[1] = int(std::upper_bound(lv.begin(), lv.end(), std::uint8_t(0)) - lv.begin());
+    if (level_begin[1] < int(lv.size())) {
+        levels = lv.back();
+        for (int L = 2; L <= levels + 1; ++L)
+            level_begin[L] = int(std::upper_bound(lv.begin(), lv.end(), std::uint8_t(L - 1)) - lv.begin());
     }
     const int k_from = bil ? 0 : f.slices.even;
     for (int c = c0; c < c1; ++c) {
-        std::uint32_t* cc = color + std::ptrdiff_t(c - c0) * col_stride;
-        std::uint32_t* cs = slice + std::ptrdiff_t(c - c0) * col_stride;
         const int j_from = k_from > 0 ? jend[c - c0] : 0;
-        int j;
-        if (!uniform)
-            j = bil ? cast_column<true, true>(t, f, c, cc, cs, row_stride, visited)
-                    : j_from == f.rows.count ? j_from
-                                             : cast_column<false, true>(t, f, c, cc, cs, row_stride, visited, k_from,
-                                                                        j_from);
-        else j = cast_column<true, false>(t, f, c, cc, cs, row_stride, visited);
-        jend[c - c0] = j;
+        jend[c - c0] = j_from == f.rows.count
+                           ? j_from
+                           : bil ? cast_column<true, true>(t, f, c, color + std::ptrdiff_t(c - c0) * col_stride,
+                                                           slice + std::ptrdiff_t(c - c0) * col_stride, row_stride,
+                                                           visited, 0, 0, level_begin[1])
+                                 : cast_column<false, true>(t, f, c, color + std::ptrdiff_t(c - c0) * col_stride,
+                                                            slice + std::ptrdiff_t(c - c0) * col_stride, row_stride,
+                                                            visited, k_from, j_from, level_begin[1]);
     }
+    if (levels == 0) return visited;
+    if (even_rows)
+        visited += cast_level_blocks<kBlock, true>(t, f, c0, c1, color, slice, jend, col_stride, level_begin, levels);
+    else if (row_stride == kBlock)
+        visited += cast_level_blocks<kBlock, false>(t, f, c0, c1, color, slice, jend, col_stride, level_begin, levels);
+    else visited += cast_level_blocks<1, false>(t, f, c0, c1, color, slice, jend, col_stride, level_begin, levels);
     return visited;
 }
 
