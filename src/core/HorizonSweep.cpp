@@ -276,7 +276,7 @@ __attribute__((target("avx2"))) void sweep_band_avx2(const Terrain& t, const Swe
     sweep_band_body(t, g, J0, J1, ceiling, mask, b);
 }
 // And for AVX-512 (16 lanes; still no FMA, so the same bits).
-__attribute__((target("avx512f,avx512bw,avx512dq,avx512vl,prefer-vector-width=512"))) void
+__attribute__((target("avx512f,avx512bw,avx512dq,avx512vl"))) void
 sweep_band_avx512(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ceiling, std::uint8_t* mask,
                   BandScratch& b) {
     sweep_band_body(t, g, J0, J1, ceiling, mask, b);
