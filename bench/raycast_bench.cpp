@@ -7,7 +7,8 @@
 //   bench_raycast_bench --benchmark_filter=. [--benchmark_min_time=1]
 // Environment OVERFLIGHT_BENCH_DEMO_SIZE (default 4097) sets the island size.
 // BM_VoxelImagery* drape imagery at twice the island's resolution
-// (raycast/ImageryTexels.h): their ratio to BM_Voxel* is the imagery's cost.
+// (raycast/ImageryTexels.h): their ratio to BM_Voxel* is the imagery's cost;
+// BM_VoxelAllLooks adds the sun's light, shadows and the atmosphere.
 #include "core/DemoIsland.h"
 #include "core/ImageryPyramid.h"
 #include "core/SunLight.h"
@@ -113,6 +114,9 @@ void BM_VoxelAtmosphere(benchmark::State& s) { run_fast(s, Projection::Shear, {}
 void BM_VoxelImagery(benchmark::State& s) { run_fast(s, Projection::Shear, {}, false, true); }
 void BM_VoxelImageryAtmosphere(benchmark::State& s) { run_fast(s, Projection::Shear, {}, true, true); }
 void BM_VoxelShadows(benchmark::State& s) { run_fast(s, Projection::Shear, {}, false, false, true); }
+// Every look of the speed target at once: its ratio to BM_Voxel is what
+// imagery, sun light, shadows and the atmosphere cost together.
+void BM_VoxelAllLooks(benchmark::State& s) { run_fast(s, Projection::Shear, {}, true, true, true); }
 
 // The aerial perspective's per-frame tables for an eye that climbs every
 // frame, as in a flight (the direction and sky tables are rebuilt).
@@ -175,6 +179,7 @@ BENCHMARK(BM_VoxelAtmosphere)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Us
 BENCHMARK(BM_VoxelImagery)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelImageryAtmosphere)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelShadows)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelAllLooks)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AerialTables)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelNoSkip)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

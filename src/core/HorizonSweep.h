@@ -30,7 +30,7 @@
 // next. A band keeps what it touches of a grid line in the first-level cache
 // and reads each grid line's heights once into a contiguous buffer, so that
 // its inner loops vectorize whichever axis the sun lines cross (compiled for
-// AVX2 as well and picked at run time; no FMA, so the same bits).
+// AVX2 and AVX-512 as well and picked at run time; no FMA, so the same bits).
 #include "core/Terrain.h"
 
 #include <glm/vec3.hpp>

@@ -5,7 +5,13 @@
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define OVERFLIGHT_DRAPE_AVX2 1
+// GCC 12's AVX-512 headers start some intrinsics from an undefined register
+// and warn about it where they are inlined (GCC bug 105593, fixed in 13).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
+#pragma GCC diagnostic pop
 #endif
 
 namespace overflight {
@@ -128,6 +134,90 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_blendv_epi8(light, lit, painted));
     }
 }
+
+// drape_lanes_avx2 for lanes [i, i + 16) with AVX-512: the same operations
+// in the same order on twice the lanes, so the same bits. Its permutes pick
+// from all 16 entries of a level table at once, and masks replace the
+// blends (a masked gather, a masked store of the painted lanes).
+#define OVERFLIGHT_AVX512 __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
+OVERFLIGHT_AVX512 void drape_lanes_avx512(const DrapeFrame& f, const float* dir_x, const float* dir_z,
+                                          const int* jend, int i, std::uint32_t* color, const std::uint32_t* slice) {
+    const __m512i jendv = _mm512_loadu_si512(jend + i);
+    const int jtop = _mm512_reduce_max_epi32(jendv);
+    if (jtop == 0) return;
+    const ImageryTexels& im = *f.imagery;
+    const ImageryTexels::LevelLanes& lv = im.level_lanes();
+    const float* slog = im.slice_log2();
+    const float* rlog = im.row_log2();
+    const int* texels = reinterpret_cast<const int*>(im.texels());
+    const __m512 inv_x = _mm512_loadu_ps(lv.inv_x), inv_z = _mm512_loadu_ps(lv.inv_z);
+    const __m512i w_tab = _mm512_loadu_si512(lv.w), h_tab = _mm512_loadu_si512(lv.h);
+    const __m512i tiles_tab = _mm512_loadu_si512(lv.tiles_x), first_tab = _mm512_loadu_si512(lv.first);
+    const __m512 dx = _mm512_loadu_ps(dir_x + i), dz = _mm512_loadu_ps(dir_z + i);
+    const __m512 eye_x = _mm512_set1_ps(f.eye_x), eye_z = _mm512_set1_ps(f.eye_z);
+    const __m512 x0 = _mm512_set1_ps(im.x0()), z0 = _mm512_set1_ps(im.z0());
+    const __m512 half = _mm512_set1_ps(0.5f), zero_f = _mm512_setzero_ps();
+    const __m512 d_before = _mm512_set1_ps(f.d_before_first);
+    const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi32(1);
+    const __m512i last = _mm512_set1_epi32(im.last_level());
+    const __m512i c28 = _mm512_set1_epi32(28), c3 = _mm512_set1_epi32(3);
+    const __m512i rb_mask = _mm512_set1_epi32(0x00FF00FF), byte = _mm512_set1_epi32(0xFF);
+    const __m512i round = _mm512_set1_epi32(0x00400040), max_rb = _mm512_set1_epi32(0x00FF00FF);
+    __m512 m_top = zero_f;
+    __m512i prev = _mm512_set1_epi32(-1);
+    __m512 dk = zero_f, d_prev = zero_f, sl = zero_f;
+    for (int j = jtop - 1; j >= 0; --j) {
+        const float mj = f.row_m[j];
+        const __m512 m = _mm512_set1_ps(mj);
+        const __mmask16 painted = _mm512_cmpgt_epi32_mask(jendv, _mm512_set1_epi32(j));
+        const __m512i k = _mm512_maskz_loadu_epi32(painted, slice + std::size_t(j) * kShearBlock + i);
+        const __mmask16 same = _mm512_cmpeq_epi32_mask(k, prev);
+        const __mmask16 top = __mmask16(_mm512_cmpeq_epi32_mask(jendv, _mm512_set1_epi32(j + 1)) | __mmask16(~same));
+        m_top = _mm512_mask_mov_ps(m_top, top, m);
+        prev = k;
+        if (same != 0xFFFF) {
+            dk = _mm512_i32gather_ps(k, f.slice_d, 4);
+            d_prev = _mm512_mask_i32gather_ps(d_before, _mm512_cmpneq_epi32_mask(k, zero), _mm512_sub_epi32(k, one),
+                                              f.slice_d, 4);
+            sl = _mm512_i32gather_ps(k, slog, 4);
+        }
+        __m512 d = dk;
+        if (mj < 0.0f) {
+            const __m512 v = _mm512_mul_ps(dk, _mm512_div_ps(m_top, m));
+            const __m512 clamped = _mm512_min_ps(_mm512_max_ps(v, d_prev), dk);
+            d = _mm512_mask_mov_ps(dk, _mm512_cmp_ps_mask(m_top, zero_f, _CMP_LT_OQ), clamped);
+        }
+        const __m512 x = _mm512_add_ps(eye_x, _mm512_mul_ps(d, dx));
+        const __m512 z = _mm512_add_ps(eye_z, _mm512_mul_ps(d, dz));
+        const __m512 l = _mm512_add_ps(_mm512_add_ps(sl, _mm512_set1_ps(rlog[j])), half);
+        const __m512i lvl = _mm512_min_epi32(_mm512_max_epi32(_mm512_cvttps_epi32(l), zero), last);
+        const __m512i col = _mm512_min_epi32(
+            _mm512_max_epi32(_mm512_cvttps_epi32(_mm512_mul_ps(_mm512_sub_ps(x, x0), _mm512_permutexvar_ps(lvl, inv_x))), zero),
+            _mm512_sub_epi32(_mm512_permutexvar_epi32(lvl, w_tab), one));
+        const __m512i row = _mm512_min_epi32(
+            _mm512_max_epi32(_mm512_cvttps_epi32(_mm512_mul_ps(_mm512_sub_ps(z, z0), _mm512_permutexvar_ps(lvl, inv_z))), zero),
+            _mm512_sub_epi32(_mm512_permutexvar_epi32(lvl, h_tab), one));
+        const __m512i page = _mm512_add_epi32(
+            _mm512_mullo_epi32(_mm512_srli_epi32(row, 5), _mm512_permutexvar_epi32(lvl, tiles_tab)), _mm512_srli_epi32(col, 5));
+        // (a | b | c) as one ternary-logic op.
+        const __m512i in_page = _mm512_ternarylogic_epi32(
+            _mm512_slli_epi32(_mm512_and_si512(row, c28), 5), _mm512_slli_epi32(_mm512_and_si512(col, c28), 2),
+            _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(row, c3), 2), _mm512_and_si512(col, c3)), 0xFE);
+        const __m512i idx = _mm512_add_epi32(_mm512_permutexvar_epi32(lvl, first_tab),
+                                             _mm512_or_si512(_mm512_slli_epi32(page, 10), in_page));
+        const __m512i albedo = _mm512_mask_i32gather_epi32(zero, painted, idx, texels, 4);
+        std::uint32_t* out = color + std::size_t(j) * kShearBlock + i;
+        const __m512i light = _mm512_loadu_si512(out);
+        __m512i rb = _mm512_mullo_epi16(_mm512_and_si512(light, rb_mask), _mm512_and_si512(albedo, rb_mask));
+        rb = _mm512_min_epu16(_mm512_srli_epi16(_mm512_add_epi16(rb, round), 7), max_rb);
+        __m512i g = _mm512_mullo_epi16(_mm512_and_si512(_mm512_srli_epi32(light, 8), byte),
+                                       _mm512_and_si512(_mm512_srli_epi32(albedo, 8), byte));
+        g = _mm512_min_epu16(_mm512_srli_epi16(_mm512_add_epi16(g, round), 7), max_rb);
+        const __m512i lit = _mm512_or_si512(rb, _mm512_slli_epi32(_mm512_and_si512(g, byte), 8));
+        _mm512_mask_storeu_epi32(out, painted, lit);
+    }
+}
+#undef OVERFLIGHT_AVX512
 #endif
 
 } // namespace
@@ -135,11 +225,12 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
 void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir_z, int n, const int* jend,
                        std::uint32_t* color, const std::uint32_t* slice, ResolveKernel kernel) {
 #if OVERFLIGHT_DRAPE_AVX2
-    static const bool avx2 = resolve_kernel_available(ResolveKernel::Avx2);
-    if (kernel == ResolveKernel::Auto)
-        kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
+    static const ResolveKernel fastest = resolve_kernel_available(ResolveKernel::Avx512) ? ResolveKernel::Avx512
+                                         : resolve_kernel_available(ResolveKernel::Avx2) ? ResolveKernel::Avx2
+                                                                                          : ResolveKernel::Portable;
+    if (kernel == ResolveKernel::Auto) kernel = fastest;
     // Imagery of 2^31 texels and more or of more than 16 levels goes the portable way.
-    if (kernel == ResolveKernel::Avx2 && f.imagery->lane_tables()) {
+    if (kernel != ResolveKernel::Portable && f.imagery->lane_tables()) {
         // Lanes at or past n are painted nowhere.
         alignas(32) int ends[kShearBlock];
         alignas(32) float dxs[kShearBlock], dzs[kShearBlock];
@@ -148,7 +239,10 @@ void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir
             dxs[i] = i < n ? dir_x[i] : 0.0f;
             dzs[i] = i < n ? dir_z[i] : 0.0f;
         }
-        for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2(f, dxs, dzs, ends, i, color, slice);
+        if (kernel == ResolveKernel::Avx512)
+            for (int i = 0; i < kShearBlock; i += 16) drape_lanes_avx512(f, dxs, dzs, ends, i, color, slice);
+        else
+            for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2(f, dxs, dzs, ends, i, color, slice);
         return;
     }
 #endif

@@ -359,6 +359,13 @@ bool resolve_kernel_available(ResolveKernel kernel) {
 #else
         return false;
 #endif
+    case ResolveKernel::Avx512:
+#if OVERFLIGHT_RESOLVE_AVX2
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+               __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
+#else
+        return false;
+#endif
     }
     return false;
 }
@@ -374,7 +381,7 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     static const bool avx2 = resolve_kernel_available(ResolveKernel::Avx2);
     if (kernel == ResolveKernel::Auto) kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
 #if OVERFLIGHT_RESOLVE_AVX2
-    if (kernel == ResolveKernel::Avx2) {
+    if (kernel == ResolveKernel::Avx2 || kernel == ResolveKernel::Avx512) {
         if (t.air) resolve_block_avx2(t, AirLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         else resolve_block_avx2(t, FogLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         return;

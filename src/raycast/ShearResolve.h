@@ -48,10 +48,12 @@ struct ShearBlock {
     float sun_dot[kShearBlock]; // with air: (F + a R) . sun of each column's plane (0 for padding)
 };
 
-// The kernel that computes the pixels (both give the same bits). Auto picks
+// The kernel that computes the pixels (all give the same bits). Auto picks
 // the fastest the CPU runs; the others, for tests and measurements, must be
-// resolve_kernel_available().
-enum class ResolveKernel { Auto, Portable, Avx2 };
+// resolve_kernel_available(). Avx512 (AVX-512 F, BW, DQ and VL) has a kernel
+// of its own in the imagery's drape (ShearDrape.h); the resolve runs its
+// AVX2 kernel for it.
+enum class ResolveKernel { Auto, Portable, Avx2, Avx512 };
 bool resolve_kernel_available(ResolveKernel kernel);
 
 // Resolves rows [0, H) of a block. color/slice hold, at j * kShearBlock + i,

@@ -1,6 +1,7 @@
 // The imagery draped over a shear block row by row (ShearDrape.h) gives the
-// same bits as drape_column (ImageryTexels.h) column by column: the AVX2
-// kernel against the portable one on random blocks, and a hand-worked pixel.
+// same bits as drape_column (ImageryTexels.h) column by column: the AVX2 and
+// AVX-512 kernels against the portable one on random blocks, and a
+// hand-worked pixel.
 #include "core/ImageryPyramid.h"
 #include "raycast/ImageryTexels.h"
 #include "raycast/ShearDrape.h"
@@ -24,10 +25,18 @@ ImageryPyramid random_pyramid(int w, int h, std::mt19937& rng) {
     return ImageryPyramid(std::move(img), -0.5, -0.5, 41.0, 31.0);
 }
 
+// The SIMD kernels this CPU runs.
+std::vector<ResolveKernel> simd_kernels() {
+    std::vector<ResolveKernel> out;
+    for (const ResolveKernel k : {ResolveKernel::Avx2, ResolveKernel::Avx512})
+        if (resolve_kernel_available(k)) out.push_back(k);
+    return out;
+}
+
 } // namespace
 
-TEST(ShearDrape, Avx2KernelGivesTheSameBitsAsTheColumns) {
-    if (!resolve_kernel_available(ResolveKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
+TEST(ShearDrape, SimdKernelsGiveTheSameBitsAsTheColumns) {
+    if (simd_kernels().empty()) GTEST_SKIP() << "no AVX2 on this CPU";
     std::mt19937 rng(7);
     const ImageryPyramid pyramid = random_pyramid(123, 91, rng);
     ImageryTexels texels;
@@ -58,14 +67,18 @@ TEST(ShearDrape, Avx2KernelGivesTheSameBitsAsTheColumns) {
                 color[std::size_t(j) * kShearBlock + std::size_t(i)] = light(rng);
             }
         }
-        std::vector<std::uint32_t> portable = color, avx2 = color;
+        std::vector<std::uint32_t> portable = color;
         drape_shear_block(frame, dx, dz, n, jend, portable.data(), slice.data(), ResolveKernel::Portable);
-        drape_shear_block(frame, dx, dz, n, jend, avx2.data(), slice.data(), ResolveKernel::Avx2);
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < jend[i]; ++j) {
-                const std::size_t at = std::size_t(j) * kShearBlock + std::size_t(i);
-                ASSERT_EQ(avx2[at], portable[at]) << "trial " << trial << " column " << i << " row " << j;
-            }
+        for (const ResolveKernel kernel : simd_kernels()) {
+            std::vector<std::uint32_t> simd = color;
+            drape_shear_block(frame, dx, dz, n, jend, simd.data(), slice.data(), kernel);
+            for (int i = 0; i < kShearBlock; ++i)
+                for (int j = 0; j < H; ++j) { // painted pixels the same, the others untouched
+                    const std::size_t at = std::size_t(j) * kShearBlock + std::size_t(i);
+                    ASSERT_EQ(simd[at], portable[at])
+                        << "kernel " << int(kernel) << " trial " << trial << " column " << i << " row " << j;
+                }
+        }
     }
 }
 
@@ -101,14 +114,14 @@ TEST(ShearDrape, ImageryWithoutLaneTablesGivesTheSameBits) {
             color[std::size_t(j) * kShearBlock + std::size_t(i)] = std::uint32_t(rng()) & 0xFFFFFFu;
         }
     }
-    std::vector<std::uint32_t> portable = color, avx2 = color;
+    std::vector<std::uint32_t> portable = color;
     drape_shear_block(frame, dx, dz, kShearBlock, jend, portable.data(), slice.data(), ResolveKernel::Portable);
-    if (resolve_kernel_available(ResolveKernel::Avx2))
-        drape_shear_block(frame, dx, dz, kShearBlock, jend, avx2.data(), slice.data(), ResolveKernel::Avx2);
-    else
-        avx2 = portable;
-    EXPECT_EQ(avx2, portable);
     EXPECT_NE(portable, color);
+    for (const ResolveKernel kernel : simd_kernels()) {
+        std::vector<std::uint32_t> simd = color;
+        drape_shear_block(frame, dx, dz, kShearBlock, jend, simd.data(), slice.data(), kernel);
+        EXPECT_EQ(simd, portable);
+    }
 }
 
 // One column of one painted row, worked by hand: slice 1 (view depth 2,
@@ -127,7 +140,7 @@ TEST(ShearDrape, HandWorkedPixel) {
     texels.prepare_rows(row_m.data(), 1);
     EXPECT_EQ(texels.level(1, 0), 0);
     const DrapeFrame frame{&texels, slice_d.data(), 1.0f, row_m.data(), 2.0f, 1.0f};
-    for (const ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2}) {
+    for (const ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx512}) {
         if (!resolve_kernel_available(kernel)) continue;
         std::vector<std::uint32_t> color(kShearBlock, 0), slice(kShearBlock, 0);
         color[0] = 128u | (64u << 8) | (255u << 16);
