@@ -11,12 +11,15 @@
 
 #include <gdal.h>
 #include <ogr_srs_api.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <optional>
 #include <tuple>
@@ -175,36 +178,48 @@ TileWriteReport write_tile_directory(const DataSet& data, const std::string& dir
     std::vector<std::vector<float>> roughness(ix.levels > 0 ? g.exists.size() : 0);
     const int total = g.tile_rows * g.tile_cols;
     const bool progress = options.terminal_progress && ::isatty(2);
+    // Tiles are cut and encoded on all cores (encoding is most of the run);
+    // each tile's files and slot of `roughness` are its own, so the folder
+    // is the same whatever the order.
+    std::atomic<int> written{0}, skipped{0}, empty{0};
+    std::atomic<bool> stop{false};
+    std::mutex progress_mutex;
     int done = 0;
-    for (int r = 0; r < g.tile_rows; ++r)
-        for (int c = 0; c < g.tile_cols; ++c) {
-            if (!g.present(r, c)) {
-                ++report.empty;
-                for (const TileFile f :
-                     {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2, TileFile::Imagery})
-                    fs::remove(tile_path(dir, r, c, f), ec); // left over from an earlier tiling of another source
+    tbb::parallel_for(0, total, [&](int k) {
+        if (stop) return;
+        const int r = k / g.tile_cols, c = k % g.tile_cols;
+        std::error_code err;
+        if (!g.present(r, c)) {
+            ++empty;
+            for (const TileFile f : {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2, TileFile::Imagery})
+                fs::remove(tile_path(dir, r, c, f), err); // left over from an earlier tiling of another source
+        } else {
+            const TileSamples tile = cut_tile(t, g, r, c, false);
+            if (ix.levels > 0) roughness[g.index(r, c)] = options.measures.roughness(tile.samples);
+            if (ix.levels == 0) fs::remove(tile_path(dir, r, c, TileFile::D2), err);
+            std::optional<TileImagery> imagery;
+            if (ix.imagery.present())
+                imagery = cut_tile_imagery(*t.imagery(), ix.imagery, g, r, c);
+            else
+                fs::remove(tile_path(dir, r, c, TileFile::Imagery), err);
+            const TileContent content(dir, ix, r, c, tile, cut_apron(t, g, r, c), options.measures,
+                                      imagery ? &*imagery : nullptr);
+            if (resume && content.on_disk()) {
+                ++skipped;
             } else {
-                const TileSamples tile = cut_tile(t, g, r, c, false);
-                if (ix.levels > 0) roughness[g.index(r, c)] = options.measures.roughness(tile.samples);
-                if (ix.levels == 0) fs::remove(tile_path(dir, r, c, TileFile::D2), ec);
-                std::optional<TileImagery> imagery;
-                if (ix.imagery.present())
-                    imagery = cut_tile_imagery(*t.imagery(), ix.imagery, g, r, c);
-                else
-                    fs::remove(tile_path(dir, r, c, TileFile::Imagery), ec);
-                const TileContent content(dir, ix, r, c, tile, cut_apron(t, g, r, c), options.measures,
-                                          imagery ? &*imagery : nullptr);
-                if (resume && content.on_disk()) {
-                    ++report.skipped;
-                } else {
-                    content.write();
-                    ++report.written;
-                }
+                content.write();
+                ++written;
             }
-            ++done;
-            if (progress) GDALTermProgress(double(done) / total, nullptr, nullptr);
-            if (options.on_tile && !options.on_tile(done, total)) throw Error(dir, "interrupted");
         }
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        ++done;
+        if (progress) GDALTermProgress(double(done) / total, nullptr, nullptr);
+        if (options.on_tile && !options.on_tile(done, total)) stop = true;
+    });
+    if (stop) throw Error(dir, "interrupted");
+    report.written = written;
+    report.skipped = skipped;
+    report.empty = empty;
     ix.grid.roughness = std::move(roughness);
     ix.grid.max_level = ix.levels;
     ix.complete = true;

@@ -107,12 +107,17 @@ std::vector<std::uint8_t> encode_geotiff(const std::string& path, const RasterSp
         ~MemFile() { VSIUnlink(name.c_str()); }
     } owner{mem};
     char** co = CSLSetNameValue(nullptr, "COMPRESS", "DEFLATE");
-    co = CSLSetNameValue(co, "PREDICTOR", spec.type == GDT_Float32 ? "3" : "2");
-    // Encoding is most of a tiling run. Level 2 (GDAL's default is 6) costs
-    // about 40 % less CPU for about 8 % larger files; any DEFLATE reader
-    // reads every level, so folders written at 6 stay readable and resumable
-    // (a re-run compares samples, not bytes).
-    co = CSLSetNameValue(co, "ZLEVEL", "2");
+    // Encoding is most of a tiling run. Measured on 600 tiles of a 20000^2
+    // DEM (heights, colors, d2): horizontal differencing (predictor 2)
+    // halves the heights and shrinks the colors, while the floating-point
+    // predictor (3) makes the d2 matrices 80 % larger than none and costs
+    // time; level 1 (libdeflate's fastest; GDAL's default is 6) encodes
+    // with about 40 % less CPU than level 2 for 5 % larger files (the whole
+    // run: 20 % fewer instructions). Any DEFLATE reader
+    // reads every level and predictor, so folders written otherwise stay
+    // readable and resumable (a re-run compares samples, not bytes).
+    if (spec.type != GDT_Float32) co = CSLSetNameValue(co, "PREDICTOR", "2");
+    co = CSLSetNameValue(co, "ZLEVEL", "1");
     gdal::Dataset ds(GDALCreate(GDALGetDriverByName("GTiff"), mem.c_str(), spec.cols, spec.rows, spec.bands, spec.type, co));
     CSLDestroy(co);
     if (!ds) throw Error(path, "cannot encode: " + gdal::last_error("GTiff"));

@@ -16,6 +16,7 @@
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_string.h>
 #include <gdal_alg.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -87,25 +88,91 @@ struct Plan {
     ImageryTileLayout layout;
 };
 
-// A thread's view of the source: the raster, and its warp onto the grid
-// (PROJ's transformations are not shared between threads); the color
-// raster and its chosen bands.
+// A thread's view of the source: the raster, its band 1 in metres and the
+// warp of that onto the grid (PROJ's transformations are not shared between
+// threads); the color raster and its chosen bands.
 struct Reader {
     gdal::Dataset source;
     GDALRasterBandH band = nullptr;
+    gdal::Dataset metres;
     std::unique_ptr<MetricWarp> warp;
     gdal::Dataset color, picked;
 };
 
+// GDAL pixel function "overflight_metres": BandToMetres::metres of each
+// Float32 source value, its arguments the conversion's fields.
+CPLErr metres_pixels(void** sources, int count, void* out, int cols, int rows, GDALDataType source_type,
+                     GDALDataType out_type, int pixel_space, int line_space, CSLConstList args) {
+    if (count != 1 || source_type != GDT_Float32) return CE_Failure;
+    BandToMetres band;
+    band.has_nodata = CPLTestBool(CSLFetchNameValueDef(args, "has_nodata", "NO"));
+    band.nodata = CPLAtof(CSLFetchNameValueDef(args, "nodata", "0"));
+    band.scale = CPLAtof(CSLFetchNameValueDef(args, "scale", "1"));
+    band.offset = CPLAtof(CSLFetchNameValueDef(args, "offset", "0"));
+    band.unit = CPLAtof(CSLFetchNameValueDef(args, "unit", "1"));
+    const auto* in = static_cast<const float*>(sources[0]);
+    std::vector<float> row(static_cast<std::size_t>(cols));
+    for (int i = 0; i < rows; ++i) {
+        for (int j = 0; j < cols; ++j) row[std::size_t(j)] = band.metres(in[std::size_t(i) * std::size_t(cols) + std::size_t(j)]);
+        GDALCopyWords(row.data(), GDT_Float32, sizeof(float), static_cast<GByte*>(out) + std::size_t(line_space) * std::size_t(i),
+                      out_type, pixel_space, cols);
+    }
+    return CE_None;
+}
+
+// Band 1 of the source in metres (kNoData where missing, its no-data
+// value), for the warp: the loader warps the whole raster converted to
+// metres (io/GdalRaster.cpp), not the source's values converted after the
+// warp, which differ by rounding under a scale, offset or unit and would
+// take a resampled value equal to the source's no-data value for a void. A
+// virtual raster with the source's size, georeferencing and CRS (as WKT, as
+// the loader's copy in memory has it), so that the warp sees the same grid;
+// it reads the source only where the warp reads it.
+gdal::Dataset metres_of(const Plan& plan, GDALDatasetH src) {
+    static std::once_flag registered;
+    std::call_once(registered, [] { GDALAddDerivedBandPixelFuncWithArgs("overflight_metres", metres_pixels, nullptr); });
+    const auto escaped = [](const std::string& text) {
+        char* e = CPLEscapeString(text.c_str(), -1, CPLES_XML);
+        std::string out = e;
+        CPLFree(e);
+        return out;
+    };
+    double g[6];
+    GDALGetGeoTransform(src, g);
+    std::string gt;
+    for (int k = 0; k < 6; ++k) gt += (k ? "," : "") + number(g[k], 17);
+    const char* wkt = GDALGetProjectionRef(src);
+    const BandToMetres& b = plan.band;
+    const std::string xml =
+        "<VRTDataset rasterXSize=\"" + std::to_string(GDALGetRasterXSize(src)) + "\" rasterYSize=\"" +
+        std::to_string(GDALGetRasterYSize(src)) + "\"><SRS>" + escaped(wkt ? wkt : "") + "</SRS><GeoTransform>" + gt +
+        "</GeoTransform><VRTRasterBand dataType=\"Float32\" band=\"1\" subClass=\"VRTDerivedRasterBand\">"
+        "<NoDataValue>" + number(double(kNoData), 17) + "</NoDataValue>"
+        "<PixelFunctionType>overflight_metres</PixelFunctionType><PixelFunctionArguments has_nodata=\"" +
+        (b.has_nodata ? "YES" : "NO") + "\" nodata=\"" + number(b.nodata, 17) + "\" scale=\"" + number(b.scale, 17) +
+        "\" offset=\"" + number(b.offset, 17) + "\" unit=\"" + number(b.unit, 17) +
+        "\"/><SourceTransferType>Float32</SourceTransferType><SimpleSource><SourceFilename relativeToVRT=\"0\" "
+        "shared=\"0\">" + escaped(plan.path) + "</SourceFilename><SourceBand>1</SourceBand></SimpleSource>"
+        "</VRTRasterBand></VRTDataset>";
+    CPLErrorReset();
+    gdal::Dataset ds(GDALOpenEx(xml.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+    if (!ds) throw Error(plan.path, "cannot read in metres: " + gdal::last_error("GDAL refused the virtual raster"));
+    return ds;
+}
+
 void open_reader(Reader& r, const Plan& plan, bool warped) {
     if (r.band) return;
     r.source = gdal::open_raster(plan.path);
-    if (warped && !plan.warp.empty()) r.warp = std::make_unique<MetricWarp>(r.source.get(), plan.grid, plan.path);
+    if (warped && !plan.warp.empty()) {
+        r.metres = metres_of(plan, r.source.get());
+        r.warp = std::make_unique<MetricWarp>(r.metres.get(), plan.grid, plan.path);
+    }
     r.band = GDALGetRasterBand(r.source.get(), 1);
 }
 
 // Rows [row0, row0 + rows) x columns [col0, col0 + cols) of the grid into
-// `z`, `stride` floats a row, as read (kNoData outside a warped source).
+// `z`, `stride` floats a row: the source's values as read, or warped from
+// its metres (kNoData where missing or outside the source).
 void read_window(const Reader& r, const Plan& plan, int row0, int col0, int rows, int cols, float* z, int stride) {
     if (rows <= 0 || cols <= 0) return;
     if (r.warp) {
@@ -125,6 +192,7 @@ void read_window(const Reader& r, const Plan& plan, int row0, int col0, int rows
 // As read_window, in metres (kNoData where missing).
 void read_metres(const Reader& r, const Plan& plan, int row0, int col0, int rows, int cols, float* z, int stride) {
     read_window(r, plan, row0, col0, rows, cols, z, stride);
+    if (r.warp) return; // warped from metres (metres_of)
     for (int i = 0; i < rows; ++i)
         for (float *v = z + std::size_t(i) * stride, *end = v + cols; v != end; ++v) *v = plan.band.metres(*v);
 }

@@ -139,8 +139,9 @@ TEST(Tile, InterruptedRunResumesToTheSameResult) {
     std::ofstream(dir.path / ".r3_c3.tif.tmp999-0") << "half";
 
     const TileWriteReport r = write_tile_directory(d, dir.path.string(), o);
-    EXPECT_EQ(r.skipped, 6);
-    EXPECT_EQ(r.written, 10);
+    // Tiles are written on all cores: those in flight when it stopped finish.
+    EXPECT_GE(r.skipped, 6);
+    EXPECT_EQ(r.skipped + r.written, 16);
     int files = 0;
     for (const auto& e : fs::directory_iterator(ref_dir.path)) {
         ++files;

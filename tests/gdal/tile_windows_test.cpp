@@ -157,6 +157,60 @@ TEST(TileWindows, WarpedDemsGiveTheSameTiles) {
     }
 }
 
+// A band scale and offset and a vertical unit in feet (GDAL's GetScale,
+// GetOffset, GetUnitType) are applied before any warp, as the loader applies
+// them: the tiles are the loaded terrain's, byte for byte, on the source's
+// own grid and warped (geographic, non-square cells), and read back as the
+// quadtree reads them every sample is the loaded terrain's, in metres.
+TEST(TileWindows, ScaledFootDemsGiveTheLoadersHeights) {
+    test::ScratchDir scratch;
+    const double scale = 0.25, offset = -12.5, foot = 0.3048;
+    for (const char* kind : {"projected", "geographic", "oblong"}) {
+        const std::string name = kind;
+        const std::string dem = scratch / (name + ".tif"), ref = scratch / (name + "_ref"), dir = scratch / (name + "_win");
+        write_dem(dem, 150, 170, name == "geographic", 3, name == "oblong" ? 0.6 : 1.0);
+        GDALDatasetH ds = GDALOpen(dem.c_str(), GA_Update);
+        ASSERT_NE(ds, nullptr);
+        GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+        GDALSetRasterScale(band, scale);
+        GDALSetRasterOffset(band, offset);
+        GDALSetRasterUnitType(band, "ft");
+        GDALClose(ds);
+
+        tile_in_memory(dem, ref, 65);
+        const auto r = test::run_overflight("tile '" + dem + "' -o '" + dir + "' --tile-size 65");
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        expect_same_files(dir, ref, false);
+
+        const DataSet loaded = load_terrain(dem);
+        const Terrain& t = loaded.terrain;
+        if (name == "projected") {
+            // Row 0, column 0 is no void: 800 + 2 * 0 raw, in feet, scaled.
+            EXPECT_NEAR(t.sample_height(0, 0), (800 * scale + offset) * foot, t.v_scale() / 2);
+        }
+        const TileIndex ix = read_tile_index(dir);
+        const TileGrid& g = ix.grid;
+        EXPECT_EQ(g.v_scale, t.v_scale()) << kind;
+        EXPECT_EQ(g.y_offset, t.y_offset()) << kind;
+        ASSERT_EQ(g.source_rows, t.rows());
+        ASSERT_EQ(g.source_cols, t.cols());
+        long long compared = 0, differing = 0;
+        for (int tr = 0; tr < g.tile_rows; ++tr)
+            for (int tc = 0; tc < g.tile_cols; ++tc) {
+                if (!g.present(tr, tc)) continue;
+                const TileSamples tile = read_tile(dir, ix, tr, tc, false, 0);
+                const int S = g.stride();
+                for (int i = 0; i < g.tile_size && tr * S + i < t.rows(); ++i)
+                    for (int j = 0; j < g.tile_size && tc * S + j < t.cols(); ++j) {
+                        ++compared;
+                        differing += tile.samples.raw(i, j) != t.raw(tr * S + i, tc * S + j);
+                    }
+            }
+        EXPECT_GE(compared, (long long)(t.rows()) * t.cols()) << kind; // shared edges counted twice
+        EXPECT_EQ(differing, 0) << kind;
+    }
+}
+
 // The README's example: GNU parallel runs three parts; the directory equals
 // one run's, byte for byte, and `--merge` finds nothing left to do.
 TEST(TileWindows, ThreePartsUnderGnuParallelEqualOneRun) {
