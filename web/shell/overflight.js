@@ -254,14 +254,22 @@ function compile(gl, vs, fs) {
 // per-frame constants of aerialFrame(). `atmosphere` is the native shaders'
 // own GLSL of that aerial perspective and sky (the site's atmosphere.glsl,
 // gl/AtmosphereGlsl.h), so the formula is written once for every GPU.
+// Each program is compiled twice, with AIR 1 (the atmosphere) and AIR 0 (the
+// fog): a branch on a uniform instead made SwiftShader pay for the
+// atmosphere on every pixel even with it off (a full-screen sky 4x slower,
+// measured in headless Chromium).
 const shadeGlsl = (atmosphere) => `
 uniform mat4 view_proj; // eye-relative: multiplies (world - eye)
 uniform vec3 eye, sun_dir, sun_color, ambient, fog_color;
 uniform float fog_density, baked;
-uniform vec4 air_beta, air_rayleigh, air_haze; // air_haze.a = 1: the atmosphere replaces the fog
+uniform vec4 air_beta, air_rayleigh, air_haze;
 ${atmosphere}
 vec3 fogged(vec3 color, vec3 world) {
-    return air_haze.a > 0.0 ? aerial(color, world) : mix(fog_color, color, exp(-fog_density * length(world - eye)));
+#if AIR
+    return aerial(color, world);
+#else
+    return mix(fog_color, color, exp(-fog_density * length(world - eye)));
+#endif
 }
 vec3 shade(vec3 albedo, vec3 n, vec3 world) {
     if (baked > 0.0) return fogged(albedo, world);
@@ -342,7 +350,11 @@ out vec4 frag;
 void main() {
     vec4 near = inverse_view_proj * vec4(ndc, -1.0, 1.0), far = inverse_view_proj * vec4(ndc, 1.0, 1.0);
     vec3 dir = far.xyz / far.w - near.xyz / near.w;
-    frag = vec4(air_haze.a > 0.0 ? air_sky(dir) : mix(sky_horizon, sky_zenith, max(normalize(dir).y, 0.0)), 1.0);
+#if AIR
+    frag = vec4(air_sky(dir), 1.0);
+#else
+    frag = vec4(mix(sky_horizon, sky_zenith, max(normalize(dir).y, 0.0)), 1.0);
+#endif
 }
 `;
 
@@ -429,9 +441,14 @@ class Renderer {
         this.gl = gl;
         this.environment = site.environment;
         const shade = shadeGlsl(site.atmosphere);
-        this.lit = compile(gl, shade + kLitVs, shade + kLitFs);
-        this.line = compile(gl, shade + kLitVs, shade + kLineFs);
-        this.sky = compile(gl, kSkyVs, shade + kSkyFs);
+        // The fog's program, its atmosphere variant as .air (use() picks).
+        const shaded = (vs, fs) => {
+            const air = (on) => `#define AIR ${on}\n`;
+            return { ...compile(gl, air(0) + vs, air(0) + fs), air: compile(gl, air(1) + vs, air(1) + fs) };
+        };
+        this.lit = shaded(shade + kLitVs, shade + kLitFs);
+        this.line = shaded(shade + kLitVs, shade + kLineFs);
+        this.sky = shaded(kSkyVs, shade + kSkyFs);
         this.present = compile(gl, kSkyVs, kPresentFs);
         this.solids = new GlMesh(gl, objects.positions, objects.normals, objects.colors, objects.indices);
         this.lines = new GlMesh(gl, objects.linePoints, null, objects.lineColors, null);
@@ -464,7 +481,10 @@ class Renderer {
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     }
 
+    // Makes `program` (its atmosphere variant if the view has the
+    // atmosphere) current with the view's uniforms; returns the one in use.
     use(program, view, flipY, baked) {
+        if (program.air && view.air) program = program.air;
         const gl = this.gl;
         const e = this.environment;
         const u = program.uniforms;
@@ -482,6 +502,7 @@ class Renderer {
         gl.uniform4fv(u.air_haze, air.haze);
         gl.uniform1f(u.baked, baked ? 1 : 0);
         if (u.flip_y) gl.uniform1f(u.flip_y, flipY);
+        return program;
     }
 
     // The objects, lit (never baked: the native compositor lights them
@@ -529,7 +550,10 @@ class Renderer {
         gl.drawArrays(gl.TRIANGLES, 0, 3);
     }
 
-    // The comparison view: sky, the terrain as a WebGL2 mesh, the objects.
+    // The comparison view: the terrain as a WebGL2 mesh (RoamMeshView), the
+    // objects, and the sky behind them: drawn last at the far plane where the
+    // depth buffer still holds it, so that the fill-bound software rasteriser
+    // shades each pixel once.
     drawMesh(w, h, view, mesh, wireframe) {
         const gl = this.gl;
         const e = this.environment;
@@ -538,18 +562,21 @@ class Renderer {
         gl.depthMask(true);
         gl.clearDepth(1);
         gl.clear(gl.DEPTH_BUFFER_BIT);
-        gl.disable(gl.DEPTH_TEST);
-        this.use(this.sky, view, 1, false);
-        gl.uniformMatrix4fv(this.sky.uniforms.inverse_view_proj, false, invert4(view.viewProj));
-        gl.uniform3fv(this.sky.uniforms.sky_horizon, e.sky_horizon);
-        gl.uniform3fv(this.sky.uniforms.sky_zenith, e.sky_zenith);
-        gl.drawArrays(gl.TRIANGLES, 0, 3);
         gl.enable(gl.DEPTH_TEST);
         gl.depthFunc(gl.LESS);
         this.use(this.lit, view, 1, view.baked);
         if (wireframe) mesh.drawWireframe();
         else mesh.draw();
         this.drawObjects(view, 1);
+        gl.depthFunc(gl.LEQUAL);
+        gl.depthMask(false);
+        const sky = this.use(this.sky, view, 1, false);
+        gl.uniformMatrix4fv(sky.uniforms.inverse_view_proj, false, invert4(view.viewProj));
+        gl.uniform3fv(sky.uniforms.sky_horizon, e.sky_horizon);
+        gl.uniform3fv(sky.uniforms.sky_zenith, e.sky_zenith);
+        gl.drawArrays(gl.TRIANGLES, 0, 3);
+        gl.depthMask(true);
+        gl.depthFunc(gl.LESS);
     }
 
     // The canvas as RGBA rows from the top (tests).
