@@ -119,8 +119,8 @@ void roam_frame(Engine& e, const Camera& cam) {
     const RoamKey key{cam.eye, cam.heading, cam.pitch, cam.fov, cam.near, cam.far,
                       cam.width, cam.height, e.roam_budget, focus};
     if (e.mesh_for == key) return;
-    const auto t0 = std::chrono::steady_clock::now();
     if (!f.roam) f.roam = std::make_unique<RoamMesh>(f.data.terrain);
+    const auto t0 = std::chrono::steady_clock::now();
     const RoamStats s = f.roam->tessellate(cam, e.roam_budget, focus);
     f.roam->write_mesh(e.mesh);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
