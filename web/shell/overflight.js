@@ -615,7 +615,7 @@ class Renderer {
     }
 }
 
-// The engine's ROAM mesh in WebGL2 buffers, attributes as kLitVs reads them.
+// The engine's ROAM mesh in WebGL2 buffers, attributes as kTerrainVs reads them.
 // The buffers are sized once for the mesh (and grown by half again when a
 // larger one comes); each new mesh is copied into them with bufferSubData,
 // the plain-array upload of the native renderer. The wireframe's line list
