@@ -3,7 +3,7 @@
 # (software WebGL2 through SwiftShader, one thread): writes a site for
 # TERRAIN (default: the demo island) into a scratch folder, serves it on
 # 127.0.0.1, flies forward and counts frames over BENCH_SECONDS (default 10), for
-# the WebAssembly ray caster's view and for the WebGL2 mesh view. A
+# the WebAssembly ray caster's view and for the ROAM view (Tab). A
 # benchmark, not a test: the numbers depend on the machine and its load,
 # printed beside them.
 #

@@ -4,8 +4,10 @@
 #include "core/Camera.h"
 #include "core/Error.h"
 #include "core/Image.h"
+#include "core/MeshArrays.h"
 #include "core/SunLight.h"
 #include "core/WebTerrainFormat.h"
+#include "lod/RoamMesh.h"
 #include "raycast/RaycastOptions.h"
 #include "raycast/VoxelRenderer.h"
 #include "sim/FlightSession.h"
@@ -13,6 +15,8 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -45,14 +49,34 @@ struct Flight {
     WebTerrain data;
     std::unique_ptr<FlightSession> session;
     std::unique_ptr<VoxelRenderer> renderer;
+    std::unique_ptr<RoamMesh> roam; // its variance tree built on the first ROAM frame
+};
+
+// The arrays go to the page as they are: 3 floats per vec3, 3 bytes per color.
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && sizeof(Rgb8) == 3);
+
+// What a ROAM mesh was built for: the same again needs no rebuild.
+struct RoamKey {
+    glm::dvec3 eye{0.0};
+    double heading = 0, pitch = 0, fov = 0, near = 0, far = 0;
+    int width = 0, height = 0, budget = 0;
+    std::optional<glm::dvec2> focus;
+    friend bool operator==(const RoamKey&, const RoamKey&) = default;
 };
 
 struct Engine {
     std::unique_ptr<Flight> flight;
     int width = 1280, height = 720;
     std::optional<Camera> pinned;
+    int method = OF_METHOD_VOXEL;
+    int roam_budget = OF_ROAM_DEFAULT_BUDGET;
     ColorImage color;
     DepthImage depth;
+    MeshArrays mesh;
+    std::optional<RoamKey> mesh_for; // empty: no mesh yet, or a new terrain
+    double mesh_version = 0;
+    double roam_stats[8] = {};
+    double sun[5] = {};
     float view_proj[16] = {};
     double camera[8] = {};
     double vehicle[5] = {};
@@ -85,6 +109,28 @@ int guarded(int code, const F& f) {
     }
 }
 
+// The ROAM method's frame (methods/RoamMethod.cpp): tessellate for the
+// camera within the budget, the vehicle's triangles first unless the camera
+// is pinned (as `render`, which has no vehicle), then the plain arrays.
+void roam_frame(Engine& e, const Camera& cam) {
+    Flight& f = *e.flight;
+    std::optional<glm::dvec2> focus;
+    if (!e.pinned) focus = glm::dvec2(f.session->vehicle().x, f.session->vehicle().z);
+    const RoamKey key{cam.eye, cam.heading, cam.pitch, cam.fov, cam.near, cam.far,
+                      cam.width, cam.height, e.roam_budget, focus};
+    if (e.mesh_for == key) return;
+    if (!f.roam) f.roam = std::make_unique<RoamMesh>(f.data.terrain);
+    const auto t0 = std::chrono::steady_clock::now();
+    const RoamStats s = f.roam->tessellate(cam, e.roam_budget, focus);
+    f.roam->write_mesh(e.mesh);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double stats[8] = {double(e.mesh.triangle_count()), double(e.mesh.positions.size()), double(s.splits),
+                             double(s.forced_splits), double(s.max_level), s.max_error_px, s.mean_error_px, ms};
+    std::copy(stats, stats + 8, e.roam_stats);
+    e.mesh_for = key;
+    ++e.mesh_version;
+}
+
 } // namespace
 
 extern "C" {
@@ -96,6 +142,9 @@ int of_load_terrain(const std::uint8_t* bytes, int size) {
             decode_web_terrain(std::span<const std::uint8_t>(bytes, std::size_t(size)), "terrain file"));
         e.flight = std::move(flight);
         e.pinned.reset();
+        e.mesh.clear();
+        e.mesh_for.reset();
+        ++e.mesh_version;
     });
 }
 
@@ -124,13 +173,27 @@ int of_frame(double wall_seconds) {
     }
     return guarded(OF_FAILED, [&](Engine& en) {
         FlightSession& s = *en.flight->session;
-        s.begin_frame(); // the commands it returns (method, detail, screenshot, quit) are the page's
+        // The detail keys step the ROAM budget as `fly` does; the other
+        // commands (method, screenshot, quit) are the page's.
+        for (Key k : s.begin_frame()) {
+            if (k == Key::DetailUp) en.roam_budget = roam_scale_budget(en.roam_budget, 1);
+            if (k == Key::DetailDown) en.roam_budget = roam_scale_budget(en.roam_budget, -1);
+        }
         s.advance(wall_seconds);
         Camera cam = en.pinned ? *en.pinned : s.camera();
         cam.width = en.width;
         cam.height = en.height;
-        VoxelFrameStats stats;
-        en.flight->renderer->render(cam, s.environment(), en.color, en.depth, stats);
+        const Environment env = s.environment();
+        if (en.method == OF_METHOD_ROAM) {
+            roam_frame(en, cam);
+        } else {
+            VoxelFrameStats stats;
+            en.flight->renderer->render(cam, env, en.color, en.depth, stats);
+        }
+        const SunAngles sun = sun_angles(env.sun_dir);
+        const glm::dvec3 to_sun = glm::normalize(glm::dvec3(env.sun_dir));
+        const double sun_out[5] = {sun.azimuth, sun.elevation, to_sun.x, to_sun.y, to_sun.z};
+        std::copy(sun_out, sun_out + 5, en.sun);
         const glm::mat4 vp(cam.projection_matrix() * cam.view_matrix());
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r) en.view_proj[4 * c + r] = vp[c][r];
@@ -142,6 +205,34 @@ int of_frame(double wall_seconds) {
         s.end_frame();
     });
 }
+
+int of_set_method(int method) {
+    return guarded(OF_BAD_ARGUMENT, [&](Engine& e) {
+        if (method != OF_METHOD_VOXEL && method != OF_METHOD_ROAM)
+            throw Error("method", std::to_string(method) + " is neither 0 (voxel) nor 1 (roam)");
+        e.method = method;
+    });
+}
+
+int of_set_roam_budget(int triangles) {
+    return guarded(OF_BAD_ARGUMENT, [&](Engine& e) {
+        if (triangles < 2 || triangles > (1 << 24))
+            throw Error("triangle budget", std::to_string(triangles) + " is outside 2..16777216");
+        e.roam_budget = triangles;
+    });
+}
+
+int of_roam_budget() { return engine().roam_budget; }
+
+const float* of_mesh_positions() { return reinterpret_cast<const float*>(engine().mesh.positions.data()); }
+const float* of_mesh_normals() { return reinterpret_cast<const float*>(engine().mesh.normals.data()); }
+const std::uint8_t* of_mesh_colors() { return reinterpret_cast<const std::uint8_t*>(engine().mesh.colors.data()); }
+const std::uint32_t* of_mesh_indices() { return engine().mesh.indices.data(); }
+int of_mesh_vertex_count() { return int(engine().mesh.positions.size()); }
+int of_mesh_index_count() { return int(engine().mesh.indices.size()); }
+double of_mesh_version() { return engine().mesh_version; }
+const double* of_roam_stats() { return engine().roam_stats; }
+const double* of_sun() { return engine().sun; }
 
 std::uint8_t* of_color() { return reinterpret_cast<std::uint8_t*>(engine().color.pixels.data()); }
 float* of_depth() { return engine().depth.pixels.data(); }

@@ -1,10 +1,15 @@
 #pragma once
 // The engine of the web page, as the page's JavaScript calls it: the core's
 // flight (sim/FlightSession.h: the hovercraft at 100 Hz, the chase camera,
-// the viewer's keys) and the `voxel` method's frame (raycast/VoxelRenderer.h:
-// sun light, Floating Horizon cast, water), the same code `fly` runs, built
-// for WebAssembly (web/CMakeLists.txt). The page uploads the color and depth
-// images and draws the objects over them with the Z-buffer and of_view_proj.
+// the viewer's keys) and the frame of one of two terrain methods, the same
+// code `fly` runs, built for WebAssembly (web/CMakeLists.txt):
+//   - `voxel` (raycast/VoxelRenderer.h: sun light, Floating Horizon cast,
+//     water): the page uploads the color and depth images and draws the
+//     objects over them with the Z-buffer and of_view_proj;
+//   - `roam` (lod/RoamMesh.h: split-only ROAM within a triangle budget, the
+//     vehicle's triangles first): the page uploads the mesh's plain arrays
+//     into WebGL2 buffers and draws them, as the native renderer draws any
+//     method's mesh.
 //
 // One engine per module instance, one thread. Functions returning int return
 // 0 on success and a negative code on failure, of_error() then saying why in
@@ -47,9 +52,44 @@ OF_EXPORT void of_key(int key, int down);
 
 // One frame: the toggles of keys pressed since the last, `wall_seconds` of
 // physics (the real time since the last frame; at most 0.25 s counts), the
-// chase camera, then the voxel method's color and depth for the frame's
-// camera (the pinned one if of_set_camera was called).
+// chase camera, then the current method's output for the frame's camera
+// (the pinned one if of_set_camera was called): the voxel method's color and
+// depth, or the ROAM mesh (rebuilt only when the camera, the vehicle or the
+// budget changed). The detail keys (7 up, 8 down) step the ROAM budget by
+// sqrt 2 as `fly`'s + and _ do (lod/RoamMesh.h roam_scale_budget).
 OF_EXPORT int of_frame(double wall_seconds);
+
+// The terrain method of the next frames: 0 voxel (default), 1 roam. The
+// outputs of the other method keep their last frame's contents.
+enum { OF_METHOD_VOXEL = 0, OF_METHOD_ROAM = 1 };
+OF_EXPORT int of_set_method(int method);
+// ROAM's triangle budget per frame, 2..2^24 (default OF_ROAM_DEFAULT_BUDGET:
+// the page's software WebGL2 draws it at frame rate; `fly` starts at 65536).
+enum { OF_ROAM_DEFAULT_BUDGET = 32768 };
+OF_EXPORT int of_set_roam_budget(int triangles);
+OF_EXPORT int of_roam_budget();
+
+// The last ROAM mesh as plain arrays (core/MeshArrays.h): per vertex a world
+// position (3 floats), a unit normal (3 floats) and the terrain's color
+// (RGB8, 3 bytes); a triangle list of 32-bit vertex indices, counter-clockwise
+// seen from above. Empty before the first ROAM frame.
+OF_EXPORT const float* of_mesh_positions();
+OF_EXPORT const float* of_mesh_normals();
+OF_EXPORT const std::uint8_t* of_mesh_colors();
+OF_EXPORT const std::uint32_t* of_mesh_indices();
+OF_EXPORT int of_mesh_vertex_count();
+OF_EXPORT int of_mesh_index_count();
+// Incremented each time the arrays are rebuilt (the page uploads only then).
+OF_EXPORT double of_mesh_version();
+// The last ROAM frame's lod/RoamMesh.h statistics: {triangles, vertices,
+// splits, forced splits, deepest level, largest and mean projected error in
+// pixels, milliseconds to tessellate and write the arrays}.
+OF_EXPORT const double* of_roam_stats();
+
+// The sun of the last frame's environment (the time-of-day keys move it
+// along core/SunLight.h's day arc): {azimuth (degrees clockwise from north),
+// elevation (degrees), then the unit direction towards the sun x, y, z}.
+OF_EXPORT const double* of_sun();
 
 // The last frame's color, RGB8, width*height pixels, row 0 at the TOP (as the
 // native method's images and PNG files; OpenGL's row 0 is the bottom).

@@ -4,6 +4,12 @@
 //     loads, and the voxel cast of a fixed camera equals the native method's
 //     color and depth for that camera (the numbers are printed; the bounds
 //     are the test's);
+//   - the `roam` method's mesh for that camera and a budget is the native
+//     one (the same vertices and triangles; `overflight render --method
+//     roam --stats` reports its triangle count), within the budget, its
+//     indices in range and its vertices on the height field's samples;
+//   - the time-of-day key moves the reported sun along the day arc and
+//     relights the cast;
 //   - holding UP for 200 physics steps moves the vehicle as
 //     `overflight sim --press accelerate:0-200` does, within 1 cm;
 //   - a broken file is refused with a one-line error.
@@ -106,6 +112,73 @@ try {
   const wOfEye = vp[3] * cam.eye[0] + vp[7] * cam.eye[1] + vp[11] * cam.eye[2] + vp[15];
   check(Math.abs(vp[3] - F[0]) < 1e-6 && Math.abs(vp[7]) < 1e-6 && Math.abs(vp[11] - F[2]) < 1e-6 &&
         Math.abs(wOfEye) < 1e-2, 'view-projection: clip w is the view depth along the heading');
+
+  // The ROAM mesh of the same camera against the native method's.
+  const budget = cam.roam_budget;
+  check(M._of_set_roam_budget(1) === -3 && M._of_set_method(2) === -3, 'a budget of 1 and method 2 refused');
+  check(M._of_set_roam_budget(budget) === 0 && M._of_roam_budget() === budget, `budget ${budget} set`);
+  check(M._of_set_method(1) === 0 && M._of_frame(0) === 0, `roam frame built (${errorText()})`);
+  const nv = M._of_mesh_vertex_count(), ni = M._of_mesh_index_count();
+  const positions = new Float32Array(M.HEAPU8.slice(M._of_mesh_positions(), M._of_mesh_positions() + 12 * nv).buffer);
+  const normals = new Float32Array(M.HEAPU8.slice(M._of_mesh_normals(), M._of_mesh_normals() + 12 * nv).buffer);
+  const indices = new Uint32Array(M.HEAPU8.slice(M._of_mesh_indices(), M._of_mesh_indices() + 4 * ni).buffer);
+  const roamStats = new Float64Array(M.HEAPU8.slice(M._of_roam_stats(), M._of_roam_stats() + 64).buffer);
+  const triangles = ni / 3;
+  console.log(`roam: ${triangles} triangles, ${nv} vertices for budget ${budget}, ${roamStats[7].toFixed(1)} ms ` +
+              `(tessellation and arrays), largest error ${roamStats[5].toFixed(2)} px`);
+  check(ni % 3 === 0 && triangles === roamStats[0] && triangles <= budget && triangles >= budget - 1,
+        'triangle count within the budget (budget - 1 .. budget)');
+  check(indices.every((i) => i < nv), 'indices in range');
+  // The height field: OFTERR01's grid (core/WebTerrainFormat.h), 513^2 needs no padding.
+  const dv = new DataView(terrain.buffer, terrain.byteOffset, terrain.byteLength);
+  const gridRows = dv.getInt32(8, true), gridCols = dv.getInt32(12, true);
+  const hs = dv.getFloat32(16, true), vs = dv.getFloat32(20, true), y0 = dv.getFloat32(24, true);
+  let offGrid = 0, badNormal = 0;
+  for (let k = 0; k < nv; ++k) {
+    const c = positions[3 * k] / hs, r = positions[3 * k + 2] / hs;
+    const ri = Math.round(r), ci = Math.round(c);
+    const inside = ri >= 0 && ri < gridRows && ci >= 0 && ci < gridCols;
+    const y = inside ? Math.fround(vs * dv.getUint16(180 + 2 * (ri * gridCols + ci), true) + y0) : NaN;
+    if (Math.abs(r - ri) > 1e-4 || Math.abs(c - ci) > 1e-4 || !inside ||
+        Math.abs(positions[3 * k + 1] - y) > 1e-3)
+      ++offGrid;
+    if (Math.abs(Math.hypot(normals[3 * k], normals[3 * k + 1], normals[3 * k + 2]) - 1) > 1e-3) ++badNormal;
+  }
+  check(offGrid === 0 && badNormal === 0, `vertices on the height field's samples (${offGrid} off), unit normals`);
+  const nativePositions = new Float32Array(Uint8Array.from(fs.readFileSync(path.join(work, 'native_roam_positions.f32'))).buffer);
+  const nativeIndices = new Uint32Array(Uint8Array.from(fs.readFileSync(path.join(work, 'native_roam_indices.u32'))).buffer);
+  check(nativeIndices.length === ni && nativeIndices.every((v, k) => v === indices[k]),
+        `triangles equal the native roam's (${nativeIndices.length / 3} natively)`);
+  check(nativePositions.length === positions.length && nativePositions.every((v, k) => v === positions[k]),
+        'vertex positions equal the native roam\'s');
+  const stats = JSON.parse(execFileSync(overflight, [
+    'render', 'demo', '--demo-size', String(cam.demo_size), '--method', 'roam', '--triangles', String(budget), '--stats',
+    '--size', `${cam.width}x${cam.height}`, '--eye', cam.eye.join(','), '--heading', String(cam.heading),
+    '--pitch', String(cam.pitch), '--fov', String(cam.fov), '--near', String(cam.near), '--far', String(cam.far),
+    '--projection', 'shear', '-o', path.join(work, 'roam.png')], { encoding: 'utf8' }));
+  check(stats.triangles === triangles && stats.vertices === nv,
+        `\`render --method roam --stats\`: ${stats.triangles} triangles, ${stats.vertices} vertices, as the engine`);
+  const version = M._of_mesh_version();
+  check(M._of_frame(0) === 0 && M._of_mesh_version() === version, 'the same camera again: no rebuild');
+  check(M._of_set_method(0) === 0, 'back to voxel');
+
+  // The time-of-day key (15: sun earlier, as `fly`'s T) moves the sun along
+  // the day arc and the cast's lighting follows.
+  const sunNow = () => Array.from(new Float64Array(M.HEAPU8.slice(M._of_sun(), M._of_sun() + 40).buffer));
+  const before = sunNow(), colorBefore = M.HEAPU8.slice(M._of_color(), M._of_color() + 3 * n);
+  for (let k = 0; k < 4; ++k) {
+    M._of_key(15, 1);
+    M._of_key(15, 0);
+  }
+  check(M._of_frame(0) === 0, 'frame after the sun key');
+  const after = sunNow(), colorAfter = M.HEAPU8.slice(M._of_color(), M._of_color() + 3 * n);
+  let changed = 0;
+  for (let k = 0; k < 3 * n; ++k) changed += colorBefore[k] !== colorAfter[k];
+  console.log(`sun: azimuth ${before[0].toFixed(1)} elevation ${before[1].toFixed(1)} -> ` +
+              `azimuth ${after[0].toFixed(1)} elevation ${after[1].toFixed(1)}; ${changed} color channels changed`);
+  check(Math.abs(Math.hypot(after[2], after[3], after[4]) - 1) < 1e-9 && after[1] !== before[1],
+        'the sun moved (unit direction reported)');
+  check(changed > 0, 'the cast is relit');
 
   // The flight: UP held for 200 steps of 10 ms, against `overflight sim`.
   check(loadTerrain(terrain) === 0, 'terrain reloaded (a fresh flight)');

@@ -6,7 +6,11 @@
 //       objects drawn by WebGL2 and by the native compositor),
 //   (b) the objects cover the same pixels (IoU of the object masks),
 //   (c) holding UP for 200 physics steps moves the vehicle as `overflight
-//       sim --press accelerate:0-200` does (within 1 cm).
+//       sim --press accelerate:0-200` does (within 1 cm);
+//   (d) Tab switches to the engine's ROAM mesh drawn by WebGL2 (the HUD
+//       says roam and its triangle count, the frame changes, no GL error);
+//   (e) the time-of-day key T moves the sun: the ROAM view and the cast
+//       change, and so do the objects' pixels.
 // Exits 77 (CTest: Skipped) when Chromium or the WebAssembly engine
 // (scripts/build_web.sh) is missing.
 //
@@ -164,8 +168,10 @@ try {
     // (b) the objects' pixels: where each composite differs from the page's
     // cast without objects (the cast is the native one, by (a)).
     let both = 0, either = 0, webObjects = 0, nativeObjects = 0;
+    const objectMask = new Uint8Array(W * H);
     for (let k = 0; k < W * H; ++k) {
         const w = differs(web, webCast, k, 0), n = differs(ref.rgba, webCast, k, kMaxChannelDiff);
+        objectMask[k] = w;
         both += w && n;
         either += w || n;
         webObjects += w;
@@ -186,6 +192,46 @@ try {
           `${flown.vehicle.y.toFixed(4)}) vs sim (${x.toFixed(4)}, ${z.toFixed(4)}, ${y.toFixed(4)}): ` +
           `${(100 * error).toFixed(4)} cm apart; velocity ${flown.vehicle.velocity.toFixed(4)} vs ${velocity.toFixed(4)}, ` +
           `heading ${flown.vehicle.heading.toFixed(4)} vs ${heading.toFixed(4)}`);
+
+    // (d) Tab: the ROAM view of the same camera, keys as a user presses them.
+    const press = async (key, code, keyCode, modifiers = 0) => {
+        for (const type of ['rawKeyDown', 'keyUp'])
+            await page.send('Input.dispatchKeyEvent', { type, key, code, windowsVirtualKeyCode: keyCode, modifiers });
+    };
+    const share = (a, b) => Array.from({ length: W * H }, (_, k) => differs(a, b, k, 0)).filter(Boolean).length / (W * H);
+    const voxelView = await pixels(true);
+    await press('Tab', 'Tab', 9);
+    const roamView = await pixels(true);
+    const hud = await page.evaluate('overflight.hud()');
+    const roam = await page.evaluate('overflight.roam()');
+    const glError = await page.evaluate('overflight.glError()');
+    check(await page.evaluate('overflight.state.view') === 'roam' && hud.includes(`roam (WebGL2, ${roam.triangles} triangles`),
+          `Tab shows the ROAM view: HUD "${hud}"`);
+    check(roam.triangles > 1000 && roam.triangles <= roam.budget, `${roam.triangles} triangles within the budget ${roam.budget}`);
+    const roamShare = share(roamView, voxelView);
+    check(roamShare > 0.01, `the ROAM frame differs from the cast in ${(100 * roamShare).toFixed(1)}% of pixels`);
+    check(glError === 0, `no WebGL error (${glError})`);
+
+    // (e) T four times (two hours earlier): ROAM view, then the cast.
+    const sunBefore = await page.evaluate('overflight.sun()');
+    for (let k = 0; k < 4; ++k) await press('T', 'KeyT', 84, 8);
+    const roamEarlier = await pixels(true);
+    const sunAfter = await page.evaluate('overflight.sun()');
+    check(sunAfter.elevation !== sunBefore.elevation,
+          `T moved the sun from ${sunBefore.azimuth.toFixed(1)}/${sunBefore.elevation.toFixed(1)} to ` +
+          `${sunAfter.azimuth.toFixed(1)}/${sunAfter.elevation.toFixed(1)} degrees (azimuth/elevation)`);
+    check(share(roamEarlier, roamView) > 0.1, `the ROAM view is relit (${(100 * share(roamEarlier, roamView)).toFixed(1)}% of pixels)`);
+    await press('Tab', 'Tab', 9);
+    const castEarlier = await pixels(true);
+    let objectPixels = 0, objectChanged = 0;
+    for (let k = 0; k < W * H; ++k) {
+        objectPixels += objectMask[k];
+        objectChanged += objectMask[k] && differs(castEarlier, voxelView, k, 0);
+    }
+    check(share(castEarlier, voxelView) > 0.1 && objectChanged > 0.5 * objectPixels,
+          `the cast is relit (${(100 * share(castEarlier, voxelView)).toFixed(1)}% of pixels) and so are the objects ` +
+          `(${objectChanged} of ${objectPixels} pixels)`);
+    check(await page.evaluate('overflight.glError()') === 0, 'still no WebGL error');
 
     check(page.console.every((l) => !/uncaught|error/i.test(l)), `no errors in the page's console${
         page.console.length ? `: ${page.console.join(' | ')}` : ''}`);

@@ -6,8 +6,10 @@
 // Carvalho, "An Algorithm for the Visualization of a Terrain with Objects",
 // SIBGRAPI 1997, sec. 5, Fig. 5): the ray caster's depth goes straight into
 // the depth attachment, the objects are depth-tested against it, the color is
-// blitted to the canvas. Tab switches to a WebGL2 mesh of the same terrain
-// under the same camera, for comparison.
+// blitted to the canvas. Tab switches to the engine's `roam` method (Duchaineau
+// et al., "ROAMing Terrain: Real-time Optimally Adapting Meshes", 1997,
+// split-only within a triangle budget): the mesh it builds in WebAssembly for
+// the same camera is uploaded into WebGL2 buffers and drawn, for comparison.
 //
 // Plain JavaScript, no build step, one thread (no server headers needed).
 // `?size=WxH` fixes the drawing buffer's size; `?test=1` stops the frame loop
@@ -124,6 +126,36 @@ class Engine {
         this.check(this.m._of_frame(seconds), 'frame');
     }
 
+    // The terrain method of the next frames: 'voxel' or 'roam'.
+    setMethod(name) {
+        this.check(this.m._of_set_method(name === 'roam' ? 1 : 0), `method ${name}`);
+    }
+
+    // The last ROAM mesh's arrays (views into the heap) and its version,
+    // which changes whenever the engine rebuilt them.
+    mesh() {
+        const m = this.m, heap = m.HEAPU8.buffer, nv = m._of_mesh_vertex_count(), ni = m._of_mesh_index_count();
+        return {
+            version: m._of_mesh_version(), vertices: nv,
+            positions: new Float32Array(heap, m._of_mesh_positions(), 3 * nv),
+            normals: new Float32Array(heap, m._of_mesh_normals(), 3 * nv),
+            colors: new Uint8Array(heap, m._of_mesh_colors(), 3 * nv),
+            indices: new Uint32Array(heap, m._of_mesh_indices(), ni),
+        };
+    }
+
+    // The last ROAM frame's triangles, budget and milliseconds (tessellation and arrays).
+    roamStats() {
+        const s = new Float64Array(this.m.HEAPU8.buffer, this.m._of_roam_stats(), 8);
+        return { triangles: s[0], vertices: s[1], ms: s[7], budget: this.m._of_roam_budget() };
+    }
+
+    // The sun of the last frame: azimuth, elevation (degrees) and the unit direction towards it.
+    sun() {
+        const s = new Float64Array(this.m.HEAPU8.buffer, this.m._of_sun(), 5);
+        return { azimuth: s[0], elevation: s[1], dir: [s[2], s[3], s[4]] };
+    }
+
     // The last frame's color (RGB8) and window depth, rows from the top.
     color() {
         return new Uint8Array(this.m.HEAPU8.buffer, this.m._of_color(), this.width * this.height * 3);
@@ -222,14 +254,22 @@ function compile(gl, vs, fs) {
 // per-frame constants of aerialFrame(). `atmosphere` is the native shaders'
 // own GLSL of that aerial perspective and sky (the site's atmosphere.glsl,
 // gl/AtmosphereGlsl.h), so the formula is written once for every GPU.
+// Each program is compiled twice, with AIR 1 (the atmosphere) and AIR 0 (the
+// fog): a branch on a uniform instead made SwiftShader pay for the
+// atmosphere on every pixel even with it off (a full-screen sky 4x slower,
+// measured in headless Chromium).
 const shadeGlsl = (atmosphere) => `
 uniform mat4 view_proj; // eye-relative: multiplies (world - eye)
 uniform vec3 eye, sun_dir, sun_color, ambient, fog_color;
 uniform float fog_density, baked;
-uniform vec4 air_beta, air_rayleigh, air_haze; // air_haze.a = 1: the atmosphere replaces the fog
+uniform vec4 air_beta, air_rayleigh, air_haze;
 ${atmosphere}
 vec3 fogged(vec3 color, vec3 world) {
-    return air_haze.a > 0.0 ? aerial(color, world) : mix(fog_color, color, exp(-fog_density * length(world - eye)));
+#if AIR
+    return aerial(color, world);
+#else
+    return mix(fog_color, color, exp(-fog_density * length(world - eye)));
+#endif
 }
 vec3 shade(vec3 albedo, vec3 n, vec3 world) {
     if (baked > 0.0) return fogged(albedo, world);
@@ -285,6 +325,28 @@ out vec4 frag;
 void main() { frag = vec4(shade(v_color, v_normal, v_world), 1.0); }
 `;
 
+// The ROAM view's terrain: shade() per vertex (Gouraud), interpolated. The
+// software rasteriser of headless Chromium (SwiftShader) fills 1280x720 with
+// the per-fragment shade() three times slower than with a plain color
+// (measured), and the mesh covers the screen; ROAM's triangles are a few
+// pixels across, so lighting and fog interpolated over them differ little.
+const kTerrainVs = `
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in vec3 color;
+out vec3 v_color;
+void main() {
+    v_color = shade(color, normal, position);
+    gl_Position = view_proj * vec4(position - eye, 1.0);
+}
+`;
+
+const kColorFs = `
+in vec3 v_color;
+out vec4 frag;
+void main() { frag = vec4(v_color, 1.0); }
+`;
+
 const kLineFs = `
 in vec3 v_world, v_normal, v_color;
 out vec4 frag;
@@ -310,7 +372,11 @@ out vec4 frag;
 void main() {
     vec4 near = inverse_view_proj * vec4(ndc, -1.0, 1.0), far = inverse_view_proj * vec4(ndc, 1.0, 1.0);
     vec3 dir = far.xyz / far.w - near.xyz / near.w;
-    frag = vec4(air_haze.a > 0.0 ? air_sky(dir) : mix(sky_horizon, sky_zenith, max(normalize(dir).y, 0.0)), 1.0);
+#if AIR
+    frag = vec4(air_sky(dir), 1.0);
+#else
+    frag = vec4(mix(sky_horizon, sky_zenith, max(normalize(dir).y, 0.0)), 1.0);
+#endif
 }
 `;
 
@@ -386,9 +452,10 @@ function invert4(m) {
 // canvas (gl/Compositor.h, "Images"); or, in the mesh view, the sky, the
 // terrain mesh and the objects (its "Mesh").
 //
-// A view is { viewProj (eye-relative, viewProjection()), eye, fogDensity,
-// air (aerialFrame(), or null: no atmosphere), baked (the terrain's colors
-// unlit) }.
+// A view is { viewProj (eye-relative, viewProjection()), eye, sunDir (unit,
+// towards the sun: the engine's, which the time-of-day keys move),
+// fogDensity, air (aerialFrame(), or null: no atmosphere), baked (the
+// terrain's colors unlit) }.
 class Renderer {
     constructor(canvas, site, objects) {
         const gl = canvas.getContext('webgl2', { antialias: false, depth: true, alpha: false, preserveDrawingBuffer: false });
@@ -396,9 +463,15 @@ class Renderer {
         this.gl = gl;
         this.environment = site.environment;
         const shade = shadeGlsl(site.atmosphere);
-        this.lit = compile(gl, shade + kLitVs, shade + kLitFs);
-        this.line = compile(gl, shade + kLitVs, shade + kLineFs);
-        this.sky = compile(gl, kSkyVs, shade + kSkyFs);
+        // The fog's program, its atmosphere variant as .air (use() picks).
+        const shaded = (vs, fs) => {
+            const air = (on) => `#define AIR ${on}\n`;
+            return { ...compile(gl, air(0) + vs, air(0) + fs), air: compile(gl, air(1) + vs, air(1) + fs) };
+        };
+        this.lit = shaded(shade + kLitVs, shade + kLitFs);
+        this.line = shaded(shade + kLitVs, shade + kLineFs);
+        this.sky = shaded(kSkyVs, shade + kSkyFs);
+        this.terrain = shaded(shade + kTerrainVs, kColorFs);
         this.present = compile(gl, kSkyVs, kPresentFs);
         this.solids = new GlMesh(gl, objects.positions, objects.normals, objects.colors, objects.indices);
         this.lines = new GlMesh(gl, objects.linePoints, null, objects.lineColors, null);
@@ -431,15 +504,17 @@ class Renderer {
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     }
 
+    // Makes `program` (its atmosphere variant if the view has the
+    // atmosphere) current with the view's uniforms; returns the one in use.
     use(program, view, flipY, baked) {
+        if (program.air && view.air) program = program.air;
         const gl = this.gl;
         const e = this.environment;
         const u = program.uniforms;
         gl.useProgram(program.program);
         gl.uniformMatrix4fv(u.view_proj, false, view.viewProj);
         gl.uniform3fv(u.eye, view.eye);
-        const s = e.sun_dir, n = Math.hypot(s[0], s[1], s[2]) || 1;
-        gl.uniform3f(u.sun_dir, s[0] / n, s[1] / n, s[2] / n);
+        gl.uniform3fv(u.sun_dir, view.sunDir);
         gl.uniform3fv(u.sun_color, e.sun_color);
         gl.uniform3fv(u.ambient, e.ambient);
         gl.uniform3fv(u.fog_color, e.fog_color);
@@ -450,6 +525,7 @@ class Renderer {
         gl.uniform4fv(u.air_haze, air.haze);
         gl.uniform1f(u.baked, baked ? 1 : 0);
         if (u.flip_y) gl.uniform1f(u.flip_y, flipY);
+        return program;
     }
 
     // The objects, lit (never baked: the native compositor lights them
@@ -497,7 +573,10 @@ class Renderer {
         gl.drawArrays(gl.TRIANGLES, 0, 3);
     }
 
-    // The comparison view: sky, the terrain as a WebGL2 mesh, the objects.
+    // The comparison view: the terrain as a WebGL2 mesh (RoamMeshView), the
+    // objects, and the sky behind them: drawn last at the far plane where the
+    // depth buffer still holds it, so that the fill-bound software rasteriser
+    // shades each pixel once.
     drawMesh(w, h, view, mesh, wireframe) {
         const gl = this.gl;
         const e = this.environment;
@@ -506,18 +585,21 @@ class Renderer {
         gl.depthMask(true);
         gl.clearDepth(1);
         gl.clear(gl.DEPTH_BUFFER_BIT);
-        gl.disable(gl.DEPTH_TEST);
-        this.use(this.sky, view, 1, false);
-        gl.uniformMatrix4fv(this.sky.uniforms.inverse_view_proj, false, invert4(view.viewProj));
-        gl.uniform3fv(this.sky.uniforms.sky_horizon, e.sky_horizon);
-        gl.uniform3fv(this.sky.uniforms.sky_zenith, e.sky_zenith);
-        gl.drawArrays(gl.TRIANGLES, 0, 3);
         gl.enable(gl.DEPTH_TEST);
         gl.depthFunc(gl.LESS);
-        this.use(this.lit, view, 1, view.baked);
+        this.use(this.terrain, view, 1, view.baked);
         if (wireframe) mesh.drawWireframe();
         else mesh.draw();
         this.drawObjects(view, 1);
+        gl.depthFunc(gl.LEQUAL);
+        gl.depthMask(false);
+        const sky = this.use(this.sky, view, 1, false);
+        gl.uniformMatrix4fv(sky.uniforms.inverse_view_proj, false, invert4(view.viewProj));
+        gl.uniform3fv(sky.uniforms.sky_horizon, e.sky_horizon);
+        gl.uniform3fv(sky.uniforms.sky_zenith, e.sky_zenith);
+        gl.drawArrays(gl.TRIANGLES, 0, 3);
+        gl.depthMask(true);
+        gl.depthFunc(gl.LESS);
     }
 
     // The canvas as RGBA rows from the top (tests).
@@ -533,81 +615,95 @@ class Renderer {
     }
 }
 
-// The terrain as a WebGL2 mesh for the comparison view: DESIGN sec. 3's
-// `mesh` surface (two triangles per cell, diagonals alternating as the
-// binary triangle tree splits them, gl/TerrainMesh.h), over every
-// `stride`-th sample so that it holds at most kMeshSide samples per side,
-// normals from central differences (core/Terrain.h sample_normal).
-const kMeshSide = 513;
-
-class TerrainMeshView {
-    constructor(gl, terrain) {
-        const stride = Math.max(1, Math.ceil((Math.max(terrain.rows, terrain.cols) - 1) / (kMeshSide - 1)));
-        const rows = Math.floor((terrain.rows - 1) / stride) + 1, cols = Math.floor((terrain.cols - 1) / stride) + 1;
-        const n = rows * cols;
-        const positions = new Float32Array(3 * n), normals = new Float32Array(3 * n), colors = new Uint8Array(3 * n);
-        const hs = terrain.hScale, vs = terrain.vScale, y0 = terrain.yOffset;
-        const height = (i, j) => vs * terrain.heights[i * terrain.cols + j] + y0;
-        for (let i = 0; i < rows; ++i) {
-            for (let j = 0; j < cols; ++j) {
-                const si = i * stride, sj = j * stride, k = i * cols + j;
-                positions.set([hs * sj, height(si, sj), hs * si], 3 * k);
-                const il = Math.max(si - 1, 0), ih = Math.min(si + 1, terrain.rows - 1);
-                const jl = Math.max(sj - 1, 0), jh = Math.min(sj + 1, terrain.cols - 1);
-                const dx = (height(si, jh) - height(si, jl)) / (hs * (jh - jl));
-                const dz = (height(ih, sj) - height(il, sj)) / (hs * (ih - il));
-                const len = Math.hypot(dx, 1, dz);
-                normals.set([-dx / len, 1 / len, -dz / len], 3 * k);
-                colors.set(terrain.colors.subarray(3 * (si * terrain.cols + sj), 3 * (si * terrain.cols + sj) + 3), 3 * k);
-            }
-        }
-        const indices = new Uint32Array(6 * (rows - 1) * (cols - 1));
-        const edges = new Uint32Array(indices.length * 2);
-        let at = 0;
-        for (let r = 0; r + 1 < rows; ++r) {
-            for (let c = 0; c + 1 < cols; ++c) {
-                const v = (rr, cc) => rr * cols + cc;
-                const tris = ((r + c) & 1) === 0
-                    ? [v(r, c), v(r + 1, c), v(r + 1, c + 1), v(r, c), v(r + 1, c + 1), v(r, c + 1)]
-                    : [v(r, c), v(r + 1, c), v(r, c + 1), v(r, c + 1), v(r + 1, c), v(r + 1, c + 1)];
-                indices.set(tris, at);
-                for (let t = 0; t < 6; t += 3)
-                    edges.set([tris[t], tris[t + 1], tris[t + 1], tris[t + 2], tris[t + 2], tris[t]], 2 * (at + t));
-                at += 6;
-            }
-        }
+// The engine's ROAM mesh in WebGL2 buffers, attributes as kTerrainVs reads them.
+// The buffers are sized once for the mesh (and grown by half again when a
+// larger one comes); each new mesh is copied into them with bufferSubData,
+// the plain-array upload of the native renderer. The wireframe's line list
+// is made from the triangles only while it is shown.
+class RoamMeshView {
+    constructor(gl) {
         this.gl = gl;
-        this.samples = rows * cols;
-        this.triangles = indices.length / 3;
-        this.stride = stride;
-        this.mesh = new GlMesh(gl, positions, normals, colors, indices);
-        this.edges = new GlMesh(gl, positions, normals, colors, edges);
+        this.vao = gl.createVertexArray();
+        this.buffers = [gl.createBuffer(), gl.createBuffer(), gl.createBuffer()];
+        this.indexBuffer = gl.createBuffer();
+        this.edgeBuffer = gl.createBuffer();
+        this.bytes = new Map(); // the size of each buffer's store
+        this.version = -1;
+        this.edgeVersion = -1;
+        this.count = 0;
+        this.indices = null;
+        gl.bindVertexArray(this.vao);
+        [[3, gl.FLOAT, false], [3, gl.FLOAT, false], [3, gl.UNSIGNED_BYTE, true]].forEach(([size, type, norm], k) => {
+            gl.bindBuffer(gl.ARRAY_BUFFER, this.buffers[k]);
+            gl.enableVertexAttribArray(k);
+            gl.vertexAttribPointer(k, size, type, norm, 0, 0);
+        });
+        gl.bindVertexArray(null);
+    }
+
+    // Copies `data` into `buffer` (bound to `target`), growing its store when
+    // it is too small.
+    upload(target, buffer, data) {
+        const gl = this.gl;
+        gl.bindBuffer(target, buffer);
+        if (data.byteLength > (this.bytes.get(buffer) || 0)) {
+            const bytes = Math.ceil(data.byteLength * 1.5);
+            gl.bufferData(target, bytes, gl.DYNAMIC_DRAW);
+            this.bytes.set(buffer, bytes);
+        }
+        gl.bufferSubData(target, 0, data);
+    }
+
+    // Uploads the engine's mesh (Engine.mesh()) unless it is the one uploaded last.
+    update(mesh) {
+        if (mesh.version === this.version) return;
+        const gl = this.gl;
+        gl.bindVertexArray(null); // the element buffer is bound to the VAO when drawing
+        [mesh.positions, mesh.normals, mesh.colors].forEach((a, k) => this.upload(gl.ARRAY_BUFFER, this.buffers[k], a));
+        this.upload(gl.ELEMENT_ARRAY_BUFFER, this.indexBuffer, mesh.indices);
+        this.count = mesh.indices.length;
+        this.indices = mesh.indices.slice(); // the heap's view goes stale at the next engine call
+        this.version = mesh.version;
     }
 
     draw() {
-        this.mesh.draw(this.gl.TRIANGLES);
+        if (this.count === 0) return;
+        const gl = this.gl;
+        gl.bindVertexArray(this.vao);
+        gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.indexBuffer);
+        gl.drawElements(gl.TRIANGLES, this.count, gl.UNSIGNED_INT, 0);
+        gl.bindVertexArray(null);
     }
 
     drawWireframe() {
-        this.edges.draw(this.gl.LINES);
+        if (this.count === 0) return;
+        const gl = this.gl;
+        gl.bindVertexArray(this.vao);
+        if (this.edgeVersion !== this.version) {
+            const t = this.indices, edges = new Uint32Array(2 * t.length);
+            for (let k = 0; k < t.length; k += 3)
+                edges.set([t[k], t[k + 1], t[k + 1], t[k + 2], t[k + 2], t[k]], 2 * k);
+            this.upload(gl.ELEMENT_ARRAY_BUFFER, this.edgeBuffer, edges);
+            this.edgeVersion = this.version;
+        }
+        gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.edgeBuffer);
+        gl.drawElements(gl.LINES, 2 * this.count, gl.UNSIGNED_INT, 0);
+        gl.bindVertexArray(null);
     }
 }
 
 // ---------------------------------------------------------------- the page
 
 // terrain.bin (core/WebTerrainFormat.h, "OFTERR01"): what the shell needs of
-// it besides the engine, i.e. the grid for the mesh view and the lighting
+// it besides the engine, i.e. the grid's extent for the fog and the lighting
 // the objects are shaded with.
 function parseTerrain(bytes) {
     const d = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
     const f32 = (at) => d.getFloat32(at, true);
     const vec3 = (at) => [f32(at), f32(at + 4), f32(at + 8)];
     const rows = d.getInt32(8, true), cols = d.getInt32(12, true);
-    const n = rows * cols, header = 180;
     return {
-        rows, cols, hScale: f32(16), vScale: f32(20), yOffset: f32(24),
-        heights: new Uint16Array(bytes.buffer, bytes.byteOffset + header, n),
-        colors: new Uint8Array(bytes.buffer, bytes.byteOffset + header + 2 * n, 3 * n),
+        rows, cols, hScale: f32(16),
         environment: {
             sun_dir: vec3(36), sun_color: vec3(48), ambient: vec3(60), fog_density: f32(72), fog_color: vec3(76),
             sky_zenith: vec3(88), sky_horizon: vec3(100),
@@ -667,7 +763,7 @@ async function main() {
     engine.loadTerrain(terrainBytes);
     const terrain = parseTerrain(terrainBytes);
     const renderer = new Renderer(canvas, { environment: terrain.environment, atmosphere }, parseObjects(objectBytes));
-    let mesh = null; // the comparison mesh, built on first use
+    const roam = new RoamMeshView(renderer.gl); // the comparison view's mesh
 
     const fixed = /^(\d+)x(\d+)$/.exec(params.get('size') || '');
     const resize = () => {
@@ -685,18 +781,20 @@ async function main() {
     const draw = () => {
         const toggles = engine.toggles();
         const camera = engine.camera();
+        const sunDir = engine.sun().dir;
         const view = {
             viewProj: viewProjection(camera, engine.width, engine.height),
             eye: new Float32Array(camera.eye),
+            sunDir: new Float32Array(sunDir),
             fogDensity: fogDensity(terrain, toggles.fog),
-            air: toggles.fog === 2 ? aerialFrame(terrain.environment, camera.eye[1]) : null,
+            air: toggles.fog === 2 ? aerialFrame({ ...terrain.environment, sun_dir: sunDir }, camera.eye[1]) : null,
             baked: !toggles.lighting,
         };
         if (state.view === 'voxel') {
             renderer.drawCast(engine, view, state.objects);
         } else {
-            if (!mesh) mesh = new TerrainMeshView(renderer.gl, terrain);
-            renderer.drawMesh(engine.width, engine.height, view, mesh, state.wireframe);
+            roam.update(engine.mesh());
+            renderer.drawMesh(engine.width, engine.height, view, roam, state.wireframe);
         }
     };
 
@@ -717,12 +815,14 @@ async function main() {
         }
         const v = engine.vehicle();
         const fog = ['fog off', 'GL_EXP fog', 'atmosphere'][engine.toggles().fog];
+        const roamStats = engine.roamStats();
         const method = state.view === 'voxel'
             ? `voxel (floating horizon, WebAssembly${loaded.name.endsWith('scalar') ? '' : ' SIMD128'})`
-            : `mesh (WebGL2, ${mesh.triangles} triangles${mesh.stride > 1 ? `, every ${mesh.stride}th sample` : ''})`;
+            : `roam (WebGL2, ${roamStats.triangles} triangles, budget ${roamStats.budget})`;
+        const sun = engine.sun();
         hud.textContent = `${state.fps.toFixed(1)} fps  ${method}  ${engine.width}x${engine.height}  ${fog}  ` +
             `x ${v.x.toFixed(1)} z ${v.z.toFixed(1)} y ${v.y.toFixed(1)}  ${v.velocity.toFixed(1)}/s  ` +
-            `heading ${v.heading.toFixed(0)}°`;
+            `heading ${v.heading.toFixed(0)}°  sun ${sun.azimuth.toFixed(0)}°/${sun.elevation.toFixed(0)}°`;
     };
 
     let last = performance.now();
@@ -747,14 +847,19 @@ async function main() {
         requestAnimationFrame(tick);
     };
 
-    // Keys as in `fly`: the arrows fly, f fog, 1 lighting, o water go to the
-    // engine; Tab, W and H are the page's own.
-    const engineKeys = { f: Key.Fog, '1': Key.Lighting, o: Key.Water };
+    // Keys as in `fly`: the arrows fly; f fog, 1 lighting, s shadows, t / T
+    // the sun half an hour later / earlier, o water and + / _ (or = / -) the
+    // ROAM budget go to the engine; Tab, W and H are the page's own.
+    const engineKeys = {
+        f: Key.Fog, '1': Key.Lighting, s: Key.Shadows, t: Key.SunLater, T: Key.SunEarlier, o: Key.Water,
+        '+': Key.DetailUp, '=': Key.DetailUp, _: Key.DetailDown, '-': Key.DetailDown,
+    };
     canvas.addEventListener('keydown', (e) => {
         if (e.key in kArrowKeys) {
             if (!e.repeat) engine.key(kArrowKeys[e.key], true);
         } else if (e.key === 'Tab') {
-            state.view = state.view === 'voxel' ? 'mesh' : 'voxel';
+            state.view = state.view === 'voxel' ? 'roam' : 'voxel';
+            engine.setMethod(state.view);
         } else if (e.key === 'W') {
             state.wireframe = !state.wireframe;
         } else if (e.key === 'H' || e.key === 'h') {
@@ -796,9 +901,14 @@ async function main() {
             engine.frame(0);
             state.objects = objects;
             draw();
+            showHud();
             state.objects = true;
             return toBase64(renderer.readPixels());
         },
+        hud: () => hud.textContent,
+        glError: () => renderer.gl.getError(),
+        sun: () => engine.sun(),
+        roam: () => engine.roamStats(),
         // `frames` frames of exactly `seconds` each with the arrows in `keys`
         // held from the first: the vehicle and the physics steps run.
         fly(keys, frames, seconds) {
