@@ -2,6 +2,7 @@
 // with Visibility and Shading Applications" (IEEE TVCG 1998). See HorizonSweep.h.
 #include "core/HorizonSweep.h"
 
+#include "core/CpuFeatures.h"
 #include "core/Parallel.h"
 
 #include <glm/geometric.hpp>
@@ -286,8 +287,7 @@ sweep_band_avx512(const Terrain& t, const SweepGrid& g, int J0, int J1, float* c
 void sweep_band(const Terrain& t, const SweepGrid& g, int J0, int J1, float* ceiling, std::uint8_t* mask,
                 BandScratch& b) {
 #if OVERFLIGHT_SWEEP_AVX2
-    static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-                               __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
+    static const bool avx512 = cpu_has_avx512();
     static const bool avx2 = __builtin_cpu_supports("avx2");
     if (avx512) {
         sweep_band_avx512(t, g, J0, J1, ceiling, mask, b);

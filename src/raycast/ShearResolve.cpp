@@ -2,6 +2,8 @@
 // See ShearResolve.h.
 #include "raycast/ShearResolve.h"
 
+#include "core/CpuFeatures.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -361,8 +363,7 @@ bool resolve_kernel_available(ResolveKernel kernel) {
 #endif
     case ResolveKernel::Avx512:
 #if OVERFLIGHT_RESOLVE_AVX2
-        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-               __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
+        return cpu_has_avx512();
 #else
         return false;
 #endif
