@@ -35,7 +35,12 @@ export class Browser {
             `--window-size=${width},${height}`, `--user-data-dir=${profile}`,
             '--remote-debugging-pipe', 'about:blank',
         ];
-        const proc = spawn(CHROMIUM, args, { stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] });
+        // Chromium's own scratch folders (org.chromium.Chromium.*) go under the
+        // profile, which close() removes, not into the shared temporary folder.
+        const proc = spawn(CHROMIUM, args, {
+            stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'],
+            env: { ...process.env, TMPDIR: profile },
+        });
         const b = new Browser(proc, profile);
         proc.stderr.on('data', (chunk) => { b.log += chunk; });
         proc.on('exit', (code) => {
