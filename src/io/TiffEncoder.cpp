@@ -172,8 +172,44 @@ void compress_band(const TiffImage& img, int b, std::vector<std::uint8_t>& scrat
 void put16(std::vector<std::uint8_t>& f, std::size_t at, std::uint16_t v) { std::memcpy(&f[at], &v, 2); }
 void put32(std::vector<std::uint8_t>& f, std::size_t at, std::uint32_t v) { std::memcpy(&f[at], &v, 4); }
 
+std::size_t even(std::size_t n) { return n + (n & 1); }
+
+// Bytes of a directory of `tags` with the values that do not fit an entry.
+std::size_t directory_bytes(const std::vector<Entry>& tags) {
+    std::size_t n = 2 + 12 * tags.size() + 4;
+    for (const Entry& e : tags)
+        if (e.value.size() > 4) n += even(e.value.size());
+    return n;
+}
+
+// Writes the directory of `tags` (sorted) at `at` of `f`, its long values
+// after it, and `next` as the offset of the next directory.
+void put_directory(std::vector<std::uint8_t>& f, std::size_t at, const std::vector<Entry>& tags, std::uint32_t next) {
+    put16(f, at, std::uint16_t(tags.size()));
+    std::size_t values = at + 2 + 12 * tags.size() + 4;
+    for (std::size_t t = 0; t < tags.size(); ++t) {
+        const Entry& e = tags[t];
+        const std::size_t p = at + 2 + 12 * t;
+        put16(f, p, e.tag);
+        put16(f, p + 2, e.type);
+        put32(f, p + 4, e.count);
+        if (e.value.size() <= 4) {
+            std::memcpy(&f[p + 8], e.value.data(), e.value.size());
+        } else {
+            put32(f, p + 8, std::uint32_t(values));
+            std::memcpy(&f[values], e.value.data(), e.value.size());
+            values += even(e.value.size());
+        }
+    }
+    put32(f, at + 2 + 12 * tags.size(), next);
+}
+
 } // namespace
 
+// The layout of GDAL's cloud-optimised GeoTIFFs: all directories first,
+// then the strips from the smallest level to the full image, so that a
+// truncated file loses the full image's samples (a reader fails on them)
+// rather than reading whole and missing only a reduced level.
 std::vector<std::uint8_t> encode_tiff(const std::vector<TiffImage>& images, const TiffMetadata& meta) {
     if (images.empty()) throw std::runtime_error("no image to encode");
     const int bands = images[0].bands;
@@ -183,30 +219,31 @@ std::vector<std::uint8_t> encode_tiff(const std::vector<TiffImage>& images, cons
         std::vector<Entry> gdal = gdal_tags(meta, bands);
         file_tags.insert(file_tags.end(), gdal.begin(), gdal.end());
     }
-    std::vector<std::uint8_t> f = {'I', 'I', 42, 0, 0, 0, 0, 0};
-    std::size_t next_pointer = 4; // where the offset of the next directory goes
-    std::vector<std::uint8_t> scratch, packed;
-    for (std::size_t k = 0; k < images.size(); ++k) {
+    const std::size_t levels = images.size();
+    std::vector<std::vector<std::vector<std::uint8_t>>> strips(levels);
+    std::vector<std::uint8_t> scratch;
+    for (std::size_t k = 0; k < levels; ++k) {
+        strips[k].resize(std::size_t(images[k].bands));
+        for (int b = 0; b < images[k].bands; ++b) compress_band(images[k], b, scratch, strips[k][std::size_t(b)]);
+    }
+    std::vector<std::vector<Entry>> dirs(levels);
+    std::vector<std::size_t> dir_at(levels);
+    std::size_t size = 8;
+    for (std::size_t k = 0; k < levels; ++k) {
         const TiffImage& img = images[k];
-        std::vector<std::uint32_t> offsets, counts;
-        for (int b = 0; b < img.bands; ++b) {
-            compress_band(img, b, scratch, packed);
-            offsets.push_back(std::uint32_t(f.size()));
-            counts.push_back(std::uint32_t(packed.size()));
-            f.insert(f.end(), packed.begin(), packed.end());
-            if (f.size() % 2) f.push_back(0);
-        }
         const auto spp = std::uint16_t(img.bands);
-        std::vector<Entry> tags;
+        std::vector<Entry>& tags = dirs[k];
         if (k > 0) tags.push_back(entry<std::uint32_t>(254, kLong, {1u})); // reduced-resolution image
         tags.push_back(entry<std::uint32_t>(256, kLong, {std::uint32_t(img.cols)}));
         tags.push_back(entry<std::uint32_t>(257, kLong, {std::uint32_t(img.rows)}));
         tags.push_back(entry<std::uint16_t>(258, kShort, std::vector<std::uint16_t>(spp, std::uint16_t(8 * img.bytes))));
         tags.push_back(entry<std::uint16_t>(259, kShort, {8})); // Adobe DEFLATE
         tags.push_back(entry<std::uint16_t>(262, kShort, {std::uint16_t(meta.rgb ? 2 : 1)}));
-        tags.push_back(entry<std::uint32_t>(273, kLong, offsets));
+        tags.push_back(entry<std::uint32_t>(273, kLong, std::vector<std::uint32_t>(spp, 0u))); // placed below
         tags.push_back(entry<std::uint16_t>(277, kShort, {spp}));
         tags.push_back(entry<std::uint32_t>(278, kLong, {std::uint32_t(img.rows)}));
+        std::vector<std::uint32_t> counts;
+        for (const auto& s : strips[k]) counts.push_back(std::uint32_t(s.size()));
         tags.push_back(entry<std::uint32_t>(279, kLong, counts));
         tags.push_back(entry<std::uint16_t>(284, kShort, {std::uint16_t(spp > 1 ? 2 : 1)}));
         if (!img.is_float) tags.push_back(entry<std::uint16_t>(317, kShort, {2}));
@@ -214,29 +251,26 @@ std::vector<std::uint8_t> encode_tiff(const std::vector<TiffImage>& images, cons
         tags.push_back(entry<std::uint16_t>(339, kShort, std::vector<std::uint16_t>(spp, std::uint16_t(img.is_float ? 3 : 1))));
         if (k == 0) tags.insert(tags.end(), file_tags.begin(), file_tags.end());
         std::sort(tags.begin(), tags.end(), [](const Entry& a, const Entry& b) { return a.tag < b.tag; });
-
-        const std::size_t ifd = f.size();
-        put32(f, next_pointer, std::uint32_t(ifd));
-        const std::size_t n = tags.size();
-        std::size_t values = ifd + 2 + 12 * n + 4;
-        f.resize(values);
-        put16(f, ifd, std::uint16_t(n));
-        for (std::size_t t = 0; t < n; ++t) {
-            const Entry& e = tags[t];
-            const std::size_t at = ifd + 2 + 12 * t;
-            put16(f, at, e.tag);
-            put16(f, at + 2, e.type);
-            put32(f, at + 4, e.count);
-            if (e.value.size() <= 4) {
-                std::memcpy(&f[at + 8], e.value.data(), e.value.size());
-            } else {
-                put32(f, at + 8, std::uint32_t(f.size()));
-                f.insert(f.end(), e.value.begin(), e.value.end());
-                if (f.size() % 2) f.push_back(0);
-            }
+        dir_at[k] = size;
+        size += directory_bytes(tags);
+    }
+    for (std::size_t k = levels; k-- > 0;) {
+        Entry& offsets = *std::find_if(dirs[k].begin(), dirs[k].end(), [](const Entry& e) { return e.tag == 273; });
+        for (std::size_t b = 0; b < strips[k].size(); ++b) {
+            const auto at = std::uint32_t(size);
+            std::memcpy(offsets.value.data() + 4 * b, &at, 4);
+            size += even(strips[k][b].size());
         }
-        next_pointer = values - 4;
-        put32(f, next_pointer, 0);
+    }
+    std::vector<std::uint8_t> f(size, 0);
+    f[0] = f[1] = 'I';
+    f[2] = 42;
+    put32(f, 4, std::uint32_t(dir_at[0]));
+    for (std::size_t k = 0; k < levels; ++k) {
+        put_directory(f, dir_at[k], dirs[k], k + 1 < levels ? std::uint32_t(dir_at[k + 1]) : 0u);
+        const Entry& offsets = *std::find_if(dirs[k].begin(), dirs[k].end(), [](const Entry& e) { return e.tag == 273; });
+        for (std::size_t b = 0; b < strips[k].size(); ++b)
+            std::memcpy(&f[u32(offsets.value.data() + 4 * b)], strips[k][b].data(), strips[k][b].size());
     }
     return f;
 }

@@ -38,7 +38,8 @@ struct TiffMetadata {
 
 // The bytes of a TIFF holding images[0] and, as reduced-resolution
 // subfiles, images[1..]; DEFLATE level 1 (libdeflate), horizontal
-// differencing for integer samples, one strip per band. Throws
+// differencing for integer samples, one strip per band; the directories
+// first, then the strips from the smallest image to images[0]. Throws
 // std::runtime_error when GDAL cannot state the CRS.
 std::vector<std::uint8_t> encode_tiff(const std::vector<TiffImage>& images, const TiffMetadata& meta);
 
