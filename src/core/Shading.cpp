@@ -15,10 +15,6 @@ namespace {
 // NaN converted to uint8_t is undefined behaviour (C++20 [conv.fpint]).
 float unit_interval(float x) { return x > 0.0f ? std::min(x, 1.0f) : 0.0f; }
 
-} // namespace
-
-namespace {
-
 // The sun's part of the shading: the zenith angle's cosine and sine and the
 // azimuth as a math angle (radians).
 struct Sun {

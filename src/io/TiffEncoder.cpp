@@ -4,7 +4,7 @@
 
 #include "io/Gdal.h"
 
-#include <cpl_string.h>
+#include <cpl_conv.h>
 #include <cpl_vsi.h>
 #include <libdeflate.h>
 
