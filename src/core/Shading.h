@@ -21,6 +21,9 @@ Rgb8 elevation_ramp(float height, float min_height, float max_height, float sea_
 // the whole terrain's colors.
 Rgb8 shaded_color(const Terrain& t, int row, int col, float min_height, float max_height, float sea_level);
 
+// Sets t.color(row, j) to shaded_color(t, row, j, ...) for every column j.
+void shade_row(Terrain& t, int row, float min_height, float max_height, float sea_level);
+
 // Fills t.colors() with elevation_ramp x (0.35 + 0.65 hillshade). Parallel over rows.
 void shade_by_elevation(Terrain& t, float sea_level);
 // The same with the ramp spread over [min_height, max_height] rather than the

@@ -473,9 +473,7 @@ CutWindow cut_window(const Reader& rd, BlockCache& cache, const Plan& plan, int 
     }
     CutWindow cw{Terrain(h, w, plan.h_scale, plan.mapping.v_scale, plan.mapping.y_offset), r0, c0};
     quantise_heights(z, plan.mapping, cw.samples.heights());
-    for (int i = 0; i < h; ++i)
-        for (int j = 0; j < w; ++j)
-            cw.samples.color(i, j) = shaded_color(cw.samples, i, j, plan.world_lo, plan.world_hi, 0.0f);
+    for (int i = 0; i < h; ++i) shade_row(cw.samples, i, plan.world_lo, plan.world_hi, 0.0f);
     return cw;
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 using namespace overflight;
 
@@ -124,6 +125,23 @@ TEST(Shading, RampGoesFromWaterToSnow) {
     EXPECT_GT(water.b, water.r);
     EXPECT_GT(snow.r, 240);
     EXPECT_GT(snow.b, 240);
+}
+
+// The row shader (each height converted once) gives every sample exactly
+// shaded_color's color, edges included.
+TEST(Shading, RowsEqualShadedColorPerSample) {
+    Terrain t(13, 17, 7.5f, 0.37f, -20.0f);
+    std::uint32_t s = 12345;
+    for (std::uint16_t& h : t.heights()) {
+        s = s * 1664525u + 1013904223u;
+        h = std::uint16_t(s >> 20);
+    }
+    shade_by_elevation(t, 50.0f, -20.0f, 1500.0f);
+    for (int i = 0; i < t.rows(); ++i)
+        for (int j = 0; j < t.cols(); ++j) {
+            const Rgb8 want = shaded_color(t, i, j, -20.0f, 1500.0f, 50.0f), got = t.color(i, j);
+            EXPECT_EQ(std::tie(got.r, got.g, got.b), std::tie(want.r, want.g, want.b)) << i << "," << j;
+        }
 }
 
 TEST(DemoIsland, IsDeterministicAndAnIsland) {
