@@ -47,12 +47,13 @@ async function fetchBytes(url, total, progress) {
     return out;
 }
 
-// objects.bin (apps/WebSite.h): typed views of the solids and lines.
-function parseObjects(bytes) {
+// objects.bin or vehicle.bin (apps/WebSite.h): typed views of the solids,
+// the lines and the boxes bounding them.
+function parseObjects(bytes, file) {
     const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
     const magic = new TextDecoder().decode(new Uint8Array(buffer, 0, 7));
-    if (magic !== 'OFOBJ01') throw new Error('objects.bin: not an Overflight objects file');
-    const [v, i, l] = new Uint32Array(buffer, 8, 3);
+    if (magic !== 'OFOBJ01') throw new Error(`${file}: not an Overflight objects file`);
+    const [v, i, l, b] = new Uint32Array(buffer, 8, 4);
     let at = 24;
     const take = (Type, n, padTo4 = false) => {
         const a = new Type(buffer, at, n);
@@ -63,6 +64,7 @@ function parseObjects(bytes) {
     return {
         positions: take(Float32Array, 3 * v), normals: take(Float32Array, 3 * v), colors: take(Uint8Array, 3 * v, true),
         indices: take(Uint32Array, i), linePoints: take(Float32Array, 3 * l), lineColors: take(Uint8Array, 3 * l, true),
+        boxes: take(Float32Array, 6 * b),
     };
 }
 
@@ -176,14 +178,36 @@ class Engine {
         return { x: v[0], y: v[1], z: v[2], heading: v[3], velocity: v[4] };
     }
 
+    // The hovercraft body's frame (origin, right, up, forward), into `out` (12 floats).
+    vehicleFrame(out) {
+        out.set(new Float64Array(this.m.HEAPU8.buffer, this.m._of_vehicle_frame(), 12));
+        return out;
+    }
+
+    // The objects' world boxes (6 floats each), which bound of_depth_rect.
+    setObjectBounds(boxes) {
+        const p = this.m._malloc(Math.max(4, boxes.byteLength));
+        if (!p) throw new Error('objects.bin: not enough memory for its boxes');
+        new Float32Array(this.m.HEAPU8.buffer, p, boxes.length).set(boxes);
+        const code = this.m._of_set_object_bounds(p, boxes.length / 6);
+        this.m._free(p);
+        this.check(code, 'objects.bin');
+    }
+
+    // The last frame's pixels objects can cover: [col0, row0, col1, row1], rows from the top.
+    depthRect() {
+        return new Int32Array(this.m.HEAPU8.buffer, this.m._of_depth_rect(), 4);
+    }
+
     physicsSteps() {
         return this.m._of_physics_steps();
     }
 
-    // The viewer's toggles: fog mode (0 off, 1 GL_EXP, 2 atmosphere), sun lighting.
+    // The viewer's toggles: fog mode (0 off, 1 GL_EXP, 2 atmosphere), sun
+    // lighting, the hovercraft drawn (the chase camera).
     toggles() {
         const t = this.m._of_toggles();
-        return { lighting: (t & 2) !== 0, fog: (t >> 4) & 3 };
+        return { lighting: (t & 2) !== 0, fog: (t >> 4) & 3, vehicle: (t & 64) !== 0 };
     }
 
     setCamera(c) {
@@ -225,6 +249,7 @@ function viewProjection(camera, width, height) {
 }
 
 // ---------------------------------------------------------------- WebGL2
+
 
 function compile(gl, vs, fs) {
     const program = gl.createProgram();
@@ -315,6 +340,28 @@ void main() {
     v_normal = normal;
     v_color = color;
     gl_Position = view_proj * vec4(position - eye, 1.0);
+    gl_Position.y *= flip_y;
+}
+`;
+
+// The hovercraft (vehicle.bin, in its own frame: base centre at the origin,
+// +Z forward) placed by the engine's body frame (sim/VehicleBody.h, as `fly`
+// places it): world = origin + axes * p, its normals turned alike. The
+// origin comes eye-relative (body_offset = origin - eye, in double).
+const kVehicleVs = `
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in vec3 color;
+uniform float flip_y;
+uniform vec3 body_offset;
+uniform mat3 body_axes; // columns: right, up, forward
+out vec3 v_world, v_normal, v_color;
+void main() {
+    vec3 relative = body_offset + body_axes * position;
+    v_world = eye + relative;
+    v_normal = body_axes * normal;
+    v_color = color;
+    gl_Position = view_proj * vec4(relative, 1.0);
     gl_Position.y *= flip_y;
 }
 `;
@@ -455,9 +502,10 @@ function invert4(m) {
 // A view is { viewProj (eye-relative, viewProjection()), eye, sunDir (unit,
 // towards the sun: the engine's, which the time-of-day keys move),
 // fogDensity, air (aerialFrame(), or null: no atmosphere), baked (the
-// terrain's colors unlit) }.
+// terrain's colors unlit), vehicle (the hovercraft's body frame,
+// Engine.vehicleFrame(), or null: none drawn) }.
 class Renderer {
-    constructor(canvas, site, objects) {
+    constructor(canvas, site, objects, vehicle) {
         const gl = canvas.getContext('webgl2', { antialias: false, depth: true, alpha: false, preserveDrawingBuffer: false });
         if (!gl) throw new Error('this browser has no WebGL2');
         this.gl = gl;
@@ -475,6 +523,10 @@ class Renderer {
         this.present = compile(gl, kSkyVs, kPresentFs);
         this.solids = new GlMesh(gl, objects.positions, objects.normals, objects.colors, objects.indices);
         this.lines = new GlMesh(gl, objects.linePoints, null, objects.lineColors, null);
+        this.vehicleProgram = shaded(shade + kVehicleVs, shade + kLitFs);
+        this.vehicle = new GlMesh(gl, vehicle.positions, vehicle.normals, vehicle.colors, vehicle.indices);
+        this.bodyOffset = new Float32Array(3);
+        this.bodyAxes = new Float32Array(9);
         this.fbo = gl.createFramebuffer();
         this.width = 0;
         this.height = 0;
@@ -528,8 +580,9 @@ class Renderer {
         return program;
     }
 
-    // The objects, lit (never baked: the native compositor lights them
-    // whatever the terrain's lighting), depth-tested, no culling.
+    // The objects and the hovercraft, lit by the engine's sun (never baked:
+    // the native compositor lights them whatever the terrain's lighting),
+    // depth-tested, no culling.
     drawObjects(view, flipY) {
         const gl = this.gl;
         gl.enable(gl.DEPTH_TEST);
@@ -540,6 +593,15 @@ class Renderer {
         this.solids.draw(gl.TRIANGLES);
         this.use(this.line, view, flipY, false);
         this.lines.draw(gl.LINES);
+        if (view.vehicle) {
+            const f = view.vehicle;
+            for (let c = 0; c < 3; ++c) this.bodyOffset[c] = f[c] - view.eye[c];
+            this.bodyAxes.set(f.subarray(3, 12));
+            const p = this.use(this.vehicleProgram, view, flipY, false);
+            gl.uniform3fv(p.uniforms.body_offset, this.bodyOffset);
+            gl.uniformMatrix3fv(p.uniforms.body_axes, false, this.bodyAxes);
+            this.vehicle.draw(gl.TRIANGLES);
+        }
     }
 
     // The ray caster's frame: its color and depth (rows from the top) loaded
@@ -746,12 +808,13 @@ async function main() {
     if (!siteResponse.ok) throw new Error(`site.json: ${siteResponse.status} ${siteResponse.statusText}`);
     const site = await siteResponse.json();
     const enginePromise = loadEngineScript().then(async ({ name, factory }) => ({ name, module: await factory() }));
-    const [terrainBytes, objectBytes, atmosphere] = await Promise.all([
+    const [terrainBytes, objectBytes, vehicleBytes, atmosphere] = await Promise.all([
         fetchBytes(site.terrain.file, site.terrain.bytes, (got, total) => {
             fill.style.width = `${(100 * got) / total}%`;
             status.textContent = `loading the terrain: ${(got / 1e6).toFixed(1)} of ${(total / 1e6).toFixed(1)} MB`;
         }),
         fetchBytes(site.objects.file, site.objects.bytes, () => {}),
+        fetchBytes(site.vehicle.file, site.vehicle.bytes, () => {}),
         fetch('atmosphere.glsl').then((r) => {
             if (!r.ok) throw new Error(`atmosphere.glsl: ${r.status} ${r.statusText}`);
             return r.text();
@@ -762,7 +825,12 @@ async function main() {
     const engine = new Engine(loaded.module);
     engine.loadTerrain(terrainBytes);
     const terrain = parseTerrain(terrainBytes);
-    const renderer = new Renderer(canvas, { environment: terrain.environment, atmosphere }, parseObjects(objectBytes));
+    const objects = parseObjects(objectBytes, site.objects.file);
+    engine.setObjectBounds(objects.boxes);
+    const renderer = new Renderer(canvas, { environment: terrain.environment, atmosphere }, objects,
+                                  parseObjects(vehicleBytes, site.vehicle.file));
+    const vehicleFrame = new Float64Array(12);
+    let showVehicle = true; // tests hide it
     const roam = new RoamMeshView(renderer.gl); // the comparison view's mesh
 
     const fixed = /^(\d+)x(\d+)$/.exec(params.get('size') || '');
@@ -789,6 +857,7 @@ async function main() {
             fogDensity: fogDensity(terrain, toggles.fog),
             air: toggles.fog === 2 ? aerialFrame({ ...terrain.environment, sun_dir: sunDir }, camera.eye[1]) : null,
             baked: !toggles.lighting,
+            vehicle: toggles.vehicle && showVehicle ? engine.vehicleFrame(vehicleFrame) : null,
         };
         if (state.view === 'voxel') {
             renderer.drawCast(engine, view, state.objects);
@@ -920,6 +989,20 @@ async function main() {
             return { vehicle: engine.vehicle(), steps: engine.physicsSteps() - before };
         },
         vehicle: () => engine.vehicle(),
+        // One frame of the chase camera, with or without the hovercraft: the
+        // canvas as base64 RGBA, the frame's camera and vehicle, and the
+        // rectangle objects can cover.
+        chase(vehicle) {
+            engine.followVehicle();
+            engine.frame(0);
+            showVehicle = vehicle;
+            draw();
+            showVehicle = true;
+            return {
+                pixels: toBase64(renderer.readPixels()), camera: engine.camera(), vehicle: engine.vehicle(),
+                depthRect: Array.from(engine.depthRect()),
+            };
+        },
     };
 }
 
