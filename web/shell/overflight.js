@@ -13,7 +13,8 @@
 //
 // Plain JavaScript, no build step, one thread (no server headers needed).
 // `?size=WxH` fixes the drawing buffer's size; `?test=1` stops the frame loop
-// after the first frame and exposes window.overflight for tests/web.
+// after the first frame and exposes window.overflight for tests/web;
+// `?profile=1` times each stage of a frame (Profiler below).
 'use strict';
 
 // sim/KeyState.h's Key values.
@@ -250,6 +251,46 @@ function viewProjection(camera, width, height) {
 
 // ---------------------------------------------------------------- WebGL2
 
+// `?profile=1`: each stage of a frame ended by reading one pixel back (so
+// that the software WebGL's work lands in the stage that queued it: Chrome's
+// gl.finish() returned before SwiftShader had drawn, measured) and timed; the
+// milliseconds per stage averaged over the frames since the last report().
+// Off, mark() does nothing: the read-backs stall the page.
+class Profiler {
+    constructor(on) {
+        this.on = on;
+        this.gl = null;
+        this.pixel = new Uint8Array(4);
+        this.sums = {};
+        this.frames = 0;
+        this.t = 0;
+    }
+
+    begin() {
+        if (this.on) this.t = performance.now();
+    }
+
+    mark(stage) {
+        if (!this.on) return;
+        if (this.gl) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.pixel);
+        const now = performance.now();
+        this.sums[stage] = (this.sums[stage] || 0) + now - this.t;
+        this.t = now;
+    }
+
+    end() {
+        if (this.on) ++this.frames;
+    }
+
+    report() {
+        const out = {};
+        for (const [k, v] of Object.entries(this.sums)) out[k] = +(v / Math.max(1, this.frames)).toFixed(2);
+        this.sums = {};
+        this.frames = 0;
+        return out;
+    }
+}
+const profiler = new Profiler(new URLSearchParams(location.search).has('profile'));
 
 function compile(gl, vs, fs) {
     const program = gl.createProgram();
@@ -588,7 +629,12 @@ class Renderer {
         gl.enable(gl.DEPTH_TEST);
         gl.depthFunc(gl.LESS);
         gl.depthMask(true);
-        gl.disable(gl.CULL_FACE);
+        // The solids are closed and wound counter-clockwise seen from
+        // outside (gl/ObjectGeometry.h): their back faces are hidden, and
+        // culling them halves SwiftShader's fragments. Drawn upside down
+        // (flipY -1) the winding turns over.
+        gl.enable(gl.CULL_FACE);
+        gl.frontFace(flipY < 0 ? gl.CW : gl.CCW);
         this.use(this.lit, view, flipY, false);
         this.solids.draw(gl.TRIANGLES);
         this.use(this.line, view, flipY, false);
@@ -602,6 +648,8 @@ class Renderer {
             gl.uniformMatrix3fv(p.uniforms.body_axes, false, this.bodyAxes);
             this.vehicle.draw(gl.TRIANGLES);
         }
+        gl.disable(gl.CULL_FACE);
+        gl.frontFace(gl.CCW);
     }
 
     // The ray caster's frame: its color and depth (rows from the top) loaded
@@ -617,14 +665,24 @@ class Renderer {
         gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
         gl.bindTexture(gl.TEXTURE_2D, this.color);
         gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.RGB, gl.UNSIGNED_BYTE, engine.color());
+        profiler.mark('color');
         gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbo);
         gl.viewport(0, 0, w, h);
-        if (objects) {
-            // The window depth goes straight into the depth attachment (Szenberg eq. 7).
+        const [c0, r0, c1, r1] = engine.depthRect();
+        if (objects && c1 > c0 && r1 > r0) {
+            // The window depth goes straight into the depth attachment
+            // (Szenberg eq. 7), only inside the rectangle objects can cover:
+            // no fragment is drawn outside it, so the stale depth there is
+            // never tested.
             gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
+            gl.pixelStorei(gl.UNPACK_ROW_LENGTH, w);
             gl.bindTexture(gl.TEXTURE_2D, this.depth);
-            gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.DEPTH_COMPONENT, gl.FLOAT, engine.depth());
+            gl.texSubImage2D(gl.TEXTURE_2D, 0, c0, r0, c1 - c0, r1 - r0, gl.DEPTH_COMPONENT, gl.FLOAT,
+                             engine.depth().subarray(r0 * w + c0, (r1 - 1) * w + c1));
+            gl.pixelStorei(gl.UNPACK_ROW_LENGTH, 0);
+            profiler.mark('depth');
             this.drawObjects(view, -1);
+            profiler.mark('objects');
         }
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
         gl.disable(gl.DEPTH_TEST);
@@ -633,6 +691,7 @@ class Renderer {
         gl.bindTexture(gl.TEXTURE_2D, this.color);
         gl.uniform1i(this.present.uniforms.image, 0);
         gl.drawArrays(gl.TRIANGLES, 0, 3);
+        profiler.mark('present');
     }
 
     // The comparison view: the terrain as a WebGL2 mesh (RoamMeshView), the
@@ -832,6 +891,7 @@ async function main() {
     const vehicleFrame = new Float64Array(12);
     let showVehicle = true; // tests hide it
     const roam = new RoamMeshView(renderer.gl); // the comparison view's mesh
+    profiler.gl = renderer.gl;
 
     const fixed = /^(\d+)x(\d+)$/.exec(params.get('size') || '');
     const resize = () => {
@@ -863,7 +923,9 @@ async function main() {
             renderer.drawCast(engine, view, state.objects);
         } else {
             roam.update(engine.mesh());
+            profiler.mark('mesh upload');
             renderer.drawMesh(engine.width, engine.height, view, roam, state.wireframe);
+            profiler.mark('mesh draw');
         }
     };
 
@@ -900,13 +962,17 @@ async function main() {
         if (!running) return;
         resize();
         const t = performance.now();
+        profiler.mark('browser'); // since the last frame's end: compositing, events, idle
         engine.frame(Math.max(0, (now - last) / 1000));
+        profiler.mark('engine');
         // The engine's share of a frame (physics, camera, cast), smoothed.
         state.engineMs += 0.05 * (performance.now() - t - state.engineMs);
         last = now;
         draw();
         ++state.frames;
         showHud();
+        profiler.mark('hud');
+        profiler.end();
         requestAnimationFrame(tick);
     };
     const start = () => {
@@ -989,6 +1055,7 @@ async function main() {
             return { vehicle: engine.vehicle(), steps: engine.physicsSteps() - before };
         },
         vehicle: () => engine.vehicle(),
+        profile: () => profiler.report(),
         // One frame of the chase camera, with or without the hovercraft: the
         // canvas as base64 RGBA, the frame's camera and vehicle, and the
         // rectangle objects can cover.
