@@ -7,6 +7,7 @@
 #include "gl/AtmosphereGlsl.h"
 #include "gl/ObjectGeometry.h"
 #include "io/Files.h"
+#include "sim/VehicleBody.h"
 
 #include <nlohmann/json.hpp>
 
@@ -44,12 +45,14 @@ void pad4(std::vector<std::uint8_t>& out) {
     while (out.size() % 4 != 0) out.push_back(0);
 }
 
+static_assert(sizeof(WorldBox) == 24, "objects.bin stores a box as six floats");
+
 std::vector<std::uint8_t> object_bytes(const gl::ObjectGeometry& g) {
     const MeshArrays& m = g.triangles;
     std::vector<std::uint8_t> out;
     append_bytes(out, "OFOBJ01", 8);
     const std::uint32_t counts[4] = {std::uint32_t(m.positions.size()), std::uint32_t(m.indices.size()),
-                                     std::uint32_t(g.line_points.size()), 0};
+                                     std::uint32_t(g.line_points.size()), std::uint32_t(g.bounds.size())};
     append_bytes(out, counts, sizeof counts);
     append_bytes(out, m.positions.data(), m.positions.size() * sizeof(glm::vec3));
     append_bytes(out, m.normals.data(), m.normals.size() * sizeof(glm::vec3));
@@ -59,6 +62,7 @@ std::vector<std::uint8_t> object_bytes(const gl::ObjectGeometry& g) {
     append_bytes(out, g.line_points.data(), g.line_points.size() * sizeof(glm::vec3));
     append_bytes(out, g.line_colors.data(), g.line_colors.size() * sizeof(Rgb8));
     pad4(out);
+    append_bytes(out, g.bounds.data(), g.bounds.size() * sizeof(WorldBox));
     return out;
 }
 
@@ -66,7 +70,7 @@ std::vector<std::uint8_t> object_bytes(const gl::ObjectGeometry& g) {
 // bar; a server may send no Content-Length) and what the site was made of.
 // The lighting and the vehicle's start are in terrain.bin.
 nlohmann::json site_json(const Terrain& t, const std::string& source, int decimation, std::size_t terrain_bytes,
-                         const gl::ObjectGeometry& g, std::size_t object_bytes) {
+                         const gl::ObjectGeometry& g, std::size_t object_bytes, std::size_t vehicle_bytes) {
     nlohmann::json j;
     j["generator"] = "overflight web";
     j["source"] = source;
@@ -77,6 +81,7 @@ nlohmann::json site_json(const Terrain& t, const std::string& source, int decima
                     {"vertices", g.triangles.positions.size()},
                     {"triangles", g.triangles.triangle_count()},
                     {"line_points", g.line_points.size()}};
+    j["vehicle"] = {{"file", "vehicle.bin"}, {"bytes", vehicle_bytes}};
     return j;
 }
 
@@ -158,10 +163,17 @@ WebSiteReport write_web_site(const DataSet& data, const std::string& source, con
     TempFolder temp(target);
     const std::vector<std::uint8_t> terrain = encode_web_terrain(site.terrain, site.environment, site.start);
     const std::vector<std::uint8_t> object = object_bytes(objects);
+    gl::ObjectGeometry vehicle;
+    vehicle.triangles = gl::player_vehicle_model();
+    vehicle.bounds.push_back(vehicle_local_box());
+    const std::vector<std::uint8_t> vehicle_file = object_bytes(vehicle);
     write_bytes(temp.path() / "terrain.bin", terrain);
     write_bytes(temp.path() / "objects.bin", object);
-    const std::string json =
-        site_json(site.terrain, source, report.decimation, terrain.size(), objects, object.size()).dump(1) + "\n";
+    write_bytes(temp.path() / "vehicle.bin", vehicle_file);
+    const std::string json = site_json(site.terrain, source, report.decimation, terrain.size(), objects,
+                                       object.size(), vehicle_file.size())
+                                 .dump(1) +
+                             "\n";
     write_file_atomically((temp.path() / "site.json").string(), json.data(), json.size());
     const std::string_view atmosphere = gl::kAtmosphereGlsl;
     write_file_atomically((temp.path() / "atmosphere.glsl").string(), atmosphere.data(), atmosphere.size());

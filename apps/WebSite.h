@@ -13,6 +13,11 @@
 //                                  "OFTERR01")
 //   objects.bin                    the scene's objects as triangle and line
 //                                  arrays (format below), drawn by WebGL2
+//   vehicle.bin                    the player's hovercraft in its own frame
+//                                  (gl/ObjectGeometry.h player_vehicle_model,
+//                                  same format, its box as the one bound),
+//                                  which the page places where the engine
+//                                  says (sim/VehicleBody.h)
 //   atmosphere.glsl                the aerial perspective and sky of the
 //                                  native shaders (gl/AtmosphereGlsl.h), which
 //                                  the page's shaders include
@@ -21,12 +26,16 @@
 //
 // objects.bin, little-endian, every array starting on a 4-byte boundary:
 //   char[8]  "OFOBJ01\0"
-//   uint32   V (vertices of the solids), I (indices), L (line points), 0
+//   uint32   V (vertices of the solids), I (indices), L (line points), B (boxes)
 //   float32  positions[3V], normals[3V]  world coordinates, unit normals
 //   uint8    colors[3V]                  padded with zeros to a multiple of 4
 //   uint32   indices[I]                  triangle list
 //   float32  line_points[3L]             segment k = points 2k, 2k+1
 //   uint8    line_colors[3L]             padded to a multiple of 4
+//   float32  boxes[6B]                   lo x, y, z, hi x, y, z: the world
+//                                        bounds of the objects' pieces
+//                                        (ObjectGeometry::bounds), which the
+//                                        page's depth upload is limited to
 // They are gl/ObjectGeometry's arrays, built on the terrain as the site holds
 // it, so that the page draws what the native compositor draws.
 #include "core/DataSet.h"

@@ -5,6 +5,7 @@
 #include "core/Error.h"
 #include "core/Image.h"
 #include "core/MeshArrays.h"
+#include "core/ScreenRect.h"
 #include "core/SunLight.h"
 #include "core/WebTerrainFormat.h"
 #include "lod/RoamMesh.h"
@@ -12,6 +13,7 @@
 #include "raycast/VoxelRenderer.h"
 #include "sim/FlightSession.h"
 #include "sim/KeyState.h"
+#include "sim/VehicleBody.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -24,6 +26,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 using namespace overflight;
 
@@ -80,6 +83,10 @@ struct Engine {
     float view_proj[16] = {};
     double camera[8] = {};
     double vehicle[5] = {};
+    double vehicle_frame[12] = {};
+    std::vector<WorldBox> object_bounds;
+    std::vector<WorldBox> frame_bounds; // the objects' and, if drawn, the vehicle's: reused every frame
+    int depth_rect[4] = {};
     std::string error;
 };
 
@@ -202,6 +209,17 @@ int of_frame(double wall_seconds) {
         const HovercraftState& v = s.vehicle();
         const double vehicle[5] = {v.x, v.y, v.z, v.heading, v.velocity};
         std::copy(vehicle, vehicle + 5, en.vehicle);
+        const BodyFrame body = vehicle_frame(en.flight->data.terrain, v.x, v.z, v.heading);
+        const glm::dvec3 axes[4] = {body.origin, body.ax, body.ay, body.az};
+        for (int k = 0; k < 4; ++k)
+            for (int c = 0; c < 3; ++c) en.vehicle_frame[3 * k + c] = axes[k][c];
+        // Half a metre around the body covers the float rounding of its
+        // placed vertices, as natively (gl/FlightVehicle.h bounds_at).
+        en.frame_bounds.assign(en.object_bounds.begin(), en.object_bounds.end());
+        if (!en.pinned) en.frame_bounds.push_back(placed_box(body, vehicle_local_box(), 0.5));
+        const PixelRect r = screen_rect(en.frame_bounds, cam);
+        const int rect[4] = {r.col0, r.row0, r.col1, r.row1};
+        std::copy(rect, rect + 4, en.depth_rect);
         s.end_frame();
     });
 }
@@ -241,6 +259,20 @@ int of_height() { return engine().color.height; }
 const float* of_view_proj() { return engine().view_proj; }
 const double* of_camera() { return engine().camera; }
 const double* of_vehicle() { return engine().vehicle; }
+const double* of_vehicle_frame() { return engine().vehicle_frame; }
+const int* of_depth_rect() { return engine().depth_rect; }
+
+int of_set_object_bounds(const float* boxes, int count) {
+    return guarded(OF_BAD_ARGUMENT, [&](Engine& e) {
+        if (count < 0 || (count > 0 && !boxes)) throw Error("object bounds", "no boxes given");
+        std::vector<WorldBox> bounds(static_cast<std::size_t>(count));
+        for (int k = 0; k < count; ++k) {
+            const float* b = boxes + 6 * k;
+            bounds[std::size_t(k)] = {glm::vec3(b[0], b[1], b[2]), glm::vec3(b[3], b[4], b[5])};
+        }
+        e.object_bounds = std::move(bounds);
+    });
+}
 
 double of_physics_steps() {
     const Engine& e = engine();
@@ -251,7 +283,8 @@ int of_toggles() {
     const Engine& e = engine();
     if (!e.flight) return 0;
     const ViewToggles& t = e.flight->session->toggles();
-    return (t.hud ? 1 : 0) | (t.lighting ? 2 : 0) | (t.shadows ? 4 : 0) | (t.water ? 8 : 0) | (int(t.fog) << 4);
+    return (t.hud ? 1 : 0) | (t.lighting ? 2 : 0) | (t.shadows ? 4 : 0) | (t.water ? 8 : 0) | (int(t.fog) << 4) |
+           (e.pinned ? 0 : 64);
 }
 
 int of_set_camera(double x, double y, double z, double heading, double pitch, double fov, double near, double far) {

@@ -107,10 +107,28 @@ OF_EXPORT const float* of_view_proj();
 OF_EXPORT const double* of_camera();
 // The vehicle after the last frame: {x, y, z, heading (degrees), velocity}.
 OF_EXPORT const double* of_vehicle();
+// Where the last frame's hovercraft body sits, as `fly` draws it
+// (sim/VehicleBody.h vehicle_frame): {origin x, y, z, right x, y, z, up x, y,
+// z, forward x, y, z}; the body's model (the site's vehicle.bin) is in the
+// frame whose origin is its base's centre, +Z forward.
+OF_EXPORT const double* of_vehicle_frame();
+// The scene objects' world boxes (`count` boxes of 6 floats: lo x, y, z, hi
+// x, y, z; the site's objects.bin holds them), copied: the frames after this
+// call bound the objects' pixels with them (of_depth_rect).
+OF_EXPORT int of_set_object_bounds(const float* boxes, int count);
+// The last frame's pixels that objects can cover: the union of the screen
+// rectangles of the objects' boxes and, with the chase camera, the
+// vehicle's body (core/ScreenRect.h screen_rect): {col0, row0, col1, row1},
+// columns [col0, col1) and rows [row0, row1) from the top; empty (col1 <=
+// col0) when none is in view. Outside it no object fragment is drawn, so the
+// page needs the ray caster's depth only inside it (the native compositor's
+// depth load, Szenberg et al. 1997 Table 1 "Z-buffer load").
+OF_EXPORT const int* of_depth_rect();
 // Physics steps (10 ms each) run since the terrain was loaded.
 OF_EXPORT double of_physics_steps();
 // The viewer's toggles: bit 0 HUD, 1 sun lighting, 2 shadows, 3 water, bits
-// 4-5 the fog mode (0 off, 1 GL_EXP, 2 atmosphere).
+// 4-5 the fog mode (0 off, 1 GL_EXP, 2 atmosphere), bit 6 the hovercraft
+// drawn (the chase camera; a pinned camera is `render`'s, which draws none).
 OF_EXPORT int of_toggles();
 
 // Pins the camera of the next frames (the vehicle keeps flying): eye in world

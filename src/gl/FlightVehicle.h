@@ -10,6 +10,7 @@
 #include "core/ScreenRect.h"
 #include "core/Terrain.h"
 #include "gl/StreamedMesh.h"
+#include "sim/VehicleBody.h"
 
 #include <vector>
 
@@ -17,9 +18,6 @@ namespace overflight::gl {
 
 class FlightVehicle {
 public:
-    static constexpr double kLength = 5.0, kWidth = 3.0, kHeight = 2.0; // metres, like the demo's vehicle
-    static constexpr double kHover = 0.3;                               // skirt above the ground
-
     // Builds the shape and its GL buffers (a GL context must be current).
     // `terrain` must outlive this object.
     explicit FlightVehicle(const Terrain& terrain);
@@ -38,12 +36,6 @@ public:
     long long draw() const { return mesh_.draw(); }
 
 private:
-    // The body's frame on the ground at (x, z): origin and axes (right, up, forward).
-    struct Frame {
-        glm::dvec3 origin, ax, ay, az;
-    };
-    Frame frame_at(double x, double z, double heading) const;
-
     const Terrain& terrain_;
     MeshArrays model_;  // local frame: base centre at the origin, +Z forward
     MeshArrays placed_; // world, reused every frame

@@ -3,6 +3,7 @@
 
 #include "core/Error.h"
 #include "gl/Catenary.h"
+#include "sim/VehicleBody.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -197,6 +198,18 @@ ObjectGeometry build_object_geometry(const Scene& scene, const Terrain& t) {
         }
     }
     return g;
+}
+
+MeshArrays player_vehicle_model() {
+    SceneObject v;
+    v.kind = ObjectKind::Vehicle;
+    v.width = VehicleBody::kWidth;
+    v.height = VehicleBody::kHeight;
+    v.depth = VehicleBody::kLength;
+    v.color = Rgb8{215, 75, 35};
+    MeshArrays m;
+    add_vehicle(m, frame_of(0, 0, 0, 0), v);
+    return m;
 }
 
 } // namespace overflight::gl

@@ -48,6 +48,12 @@ inline double tower_arm(double height) { return 0.22 * height; }
 // read with io load_model (Error(path, problem) when missing or malformed).
 ObjectGeometry build_object_geometry(const Scene& scene, const Terrain& terrain);
 
+// The player's hovercraft of `fly` in its local frame (base centred at the
+// origin, +Z forward): the `vehicle` shape of sim/VehicleBody.h's size (it
+// fills vehicle_local_box()), orange. gl/FlightVehicle.h draws it natively;
+// `overflight web` writes it into the site for the page.
+MeshArrays player_vehicle_model();
+
 // World corners of a `box` object (base y resolved against the terrain), in
 // the order of bits 1 = +X, 2 = top, 4 = +Z of its local frame. For tests and
 // analytic projections.

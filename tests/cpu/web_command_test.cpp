@@ -10,7 +10,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -46,7 +48,8 @@ const std::set<std::string> kSiteFiles = {"atmosphere.glsl",
                                           "overflight_engine_scalar.js",
                                           "overflight_engine_scalar.wasm",
                                           "site.json",
-                                          "terrain.bin"};
+                                          "terrain.bin",
+                                          "vehicle.bin"};
 
 } // namespace
 
@@ -73,6 +76,24 @@ TEST(WebCommand, WritesTheSite) {
     EXPECT_EQ(site["objects"]["bytes"], objects.size());
     EXPECT_GT(site["objects"]["triangles"].get<int>(), 50);
     EXPECT_GT(site["objects"]["line_points"].get<int>(), 100);
+    // The arrays, then one box per object, tower and cable span.
+    const auto layout_bytes = [](const std::string& file, std::uint32_t (&counts)[4]) {
+        std::memcpy(counts, file.data() + 8, sizeof counts);
+        const auto pad4 = [](std::size_t n) { return (n + 3) / 4 * 4; };
+        const std::size_t v = counts[0], i = counts[1], l = counts[2], b = counts[3];
+        return 24 + 24 * v + pad4(3 * v) + 4 * i + 12 * l + pad4(3 * l) + 24 * b;
+    };
+    std::uint32_t counts[4];
+    EXPECT_EQ(layout_bytes(objects, counts), objects.size());
+    EXPECT_GT(counts[3], 5u);
+    // The player's hovercraft in its own frame: triangles, no lines, its box.
+    const std::string vehicle = read_file_text(dir / "site/vehicle.bin");
+    EXPECT_EQ(vehicle.substr(0, 8), std::string("OFOBJ01\0", 8));
+    EXPECT_EQ(site["vehicle"]["bytes"], vehicle.size());
+    EXPECT_EQ(layout_bytes(vehicle, counts), vehicle.size());
+    EXPECT_GT(counts[1], 0u);
+    EXPECT_EQ(counts[2], 0u);
+    EXPECT_EQ(counts[3], 1u);
     EXPECT_EQ(read_file_text(dir / "site/overflight.js"),
               read_file_text(std::string(OVERFLIGHT_SOURCE_DIR) + "/web/shell/overflight.js"));
 }

@@ -7,9 +7,13 @@
 //   (b) the objects cover the same pixels (IoU of the object masks),
 //   (c) holding UP for 200 physics steps moves the vehicle as `overflight
 //       sim --press accelerate:0-200` does (within 1 cm);
-//   (d) Tab switches to the engine's ROAM mesh drawn by WebGL2 (the HUD
-//       says roam and its triangle count, the frame changes, no GL error);
-//   (e) the time-of-day key T moves the sun: the ROAM view and the cast
+//   (d) the chase view draws the hovercraft where `overflight fly --replay`
+//       draws it for the same camera and vehicle (IoU of the vehicle masks),
+//       inside the rectangle the page loads depth for;
+//   (e) Tab switches to the engine's ROAM mesh drawn by WebGL2 (the HUD
+//       says roam and its triangle count, the frame changes, no GL error),
+//       with the hovercraft drawn in it too;
+//   (f) the time-of-day key T moves the sun: the ROAM view and the cast
 //       change, and so do the objects' pixels.
 // Exits 77 (CTest: Skipped) when Chromium or the WebAssembly engine
 // (scripts/build_web.sh) is missing.
@@ -52,6 +56,7 @@ if (!existsSync(join(webBuild, 'overflight_engine.wasm'))) {
 const kMaxChannelDiff = 2;      // a pixel "equals" when no channel differs by more
 const kMinEqualShare = 0.995;   // share of equal pixels
 const kMinObjectIoU = 0.95;
+const kMinRoamVehicleIoU = 0.9; // the same hovercraft over another terrain model
 const kMaxPositionError = 0.01; // world units (metres): 1 cm
 
 const W = 640, H = 360;
@@ -127,7 +132,7 @@ try {
     const writeSeconds = (Date.now() - t0) / 1000;
     const siteBytes = readdirSync(site).reduce((sum, f) => sum + statSync(join(site, f)).size, 0);
     check(['atmosphere.glsl', 'index.html', 'objects.bin', 'overflight.js', 'overflight_engine.js', 'overflight_engine.wasm', 'site.json',
-           'terrain.bin'].every((f) => existsSync(join(site, f))), 'the site holds the page, the engine, terrain and objects');
+           'terrain.bin', 'vehicle.bin'].every((f) => existsSync(join(site, f))), 'the site holds the page, the engine, terrain and objects');
 
     // The native view, whose camera the page then pins.
     const native = join(scratch, 'native.png'), cameraFile = join(scratch, 'camera.json');
@@ -193,7 +198,43 @@ try {
           `${(100 * error).toFixed(4)} cm apart; velocity ${flown.vehicle.velocity.toFixed(4)} vs ${velocity.toFixed(4)}, ` +
           `heading ${flown.vehicle.heading.toFixed(4)} vs ${heading.toFixed(4)}`);
 
-    // (d) Tab: the ROAM view of the same camera, keys as a user presses them.
+    // (d) the chase view after (c), stopped and turned left by 75 degrees
+    // (where the 513² demo's blocky voxel ground, natively too, leaves the
+    // hovercraft in sight), with and without the hovercraft, against the
+    // native replay of that frame (camera and vehicle from the page).
+    await page.evaluate(`overflight.fly(['Brake'], 300, 0.01), overflight.fly(['Left'], 100, 0.01)`);
+    const chase = async (vehicle) => {
+        const r = await page.evaluate(`overflight.chase(${vehicle})`);
+        return { ...r, pixels: new Uint8Array(Buffer.from(r.pixels, 'base64')) };
+    };
+    const withVehicle = await chase(true), without = await chase(false);
+    const c = withVehicle.camera, v = withVehicle.vehicle;
+    const record = join(scratch, 'chase.csv'), replayDir = join(scratch, 'replay');
+    writeFileSync(record, 'frame,time,eye_x,eye_y,eye_z,heading,pitch,x,z,velocity,vehicle_heading,accelerate,brake,left,right\n' +
+                          `0,0,${c.eye.join(',')},${c.heading},${c.pitch},${v.x},${v.z},${v.velocity},${v.heading},0,0,0,0\n`);
+    overflight('fly', ...DEMO, '--scene', scene, '--method', 'voxel', '--size', `${W}x${H}`, '--replay', record,
+               '--out', replayDir);
+    const replayed = readPng(join(replayDir, 'frame_00000.png'));
+    const [c0, r0, c1, r1] = withVehicle.depthRect;
+    let vBoth = 0, vEither = 0, vWeb = 0, vNative = 0, outside = 0;
+    const vehicleMask = new Uint8Array(W * H);
+    for (let k = 0; k < W * H; ++k) {
+        const w = differs(withVehicle.pixels, without.pixels, k, 0);
+        vehicleMask[k] = w;
+        const n = differs(replayed.rgba, without.pixels, k, kMaxChannelDiff);
+        vBoth += w && n;
+        vEither += w || n;
+        vWeb += w;
+        vNative += n;
+        const col = k % W, row = Math.floor(k / W);
+        if (w && (col < c0 || col >= c1 || row < r0 || row >= r1)) ++outside;
+    }
+    const vehicleIoU = vEither ? vBoth / vEither : 0;
+    check(vWeb > 200, `the hovercraft covers ${vWeb} pixels in the page's chase view (${vNative} natively)`);
+    check(vehicleIoU >= kMinObjectIoU, `hovercraft IoU against fly --replay ${vehicleIoU.toFixed(4)} (need ${kMinObjectIoU})`);
+    check(outside === 0, `the hovercraft lies inside the depth upload's rectangle (${outside} pixels outside)`);
+
+    // (e) Tab: the ROAM view of the same camera, keys as a user presses them.
     const press = async (key, code, keyCode, modifiers = 0) => {
         for (const type of ['rawKeyDown', 'keyUp'])
             await page.send('Input.dispatchKeyEvent', { type, key, code, windowsVirtualKeyCode: keyCode, modifiers });
@@ -211,8 +252,22 @@ try {
     const roamShare = share(roamView, voxelView);
     check(roamShare > 0.01, `the ROAM frame differs from the cast in ${(100 * roamShare).toFixed(1)}% of pixels`);
     check(glError === 0, `no WebGL error (${glError})`);
+    // The hovercraft in the ROAM view: where the cast's chase view has it
+    // (the mesh may hide an edge the voxels leave in sight).
+    const roamWith = await chase(true), roamWithout = await chase(false);
+    let rBoth = 0, rEither = 0, rPixels = 0;
+    for (let k = 0; k < W * H; ++k) {
+        const r = differs(roamWith.pixels, roamWithout.pixels, k, 0);
+        rBoth += r && vehicleMask[k];
+        rEither += r || vehicleMask[k];
+        rPixels += r;
+    }
+    const roamVehicleIoU = rEither ? rBoth / rEither : 0;
+    check(rPixels > 200 && roamVehicleIoU >= kMinRoamVehicleIoU,
+          `the hovercraft in the ROAM view covers ${rPixels} pixels, IoU ${roamVehicleIoU.toFixed(4)} with the ` +
+          `cast's (need ${kMinRoamVehicleIoU})`);
 
-    // (e) T four times (two hours earlier): ROAM view, then the cast.
+    // (f) T four times (two hours earlier): ROAM view, then the cast.
     const sunBefore = await page.evaluate('overflight.sun()');
     for (let k = 0; k < 4; ++k) await press('T', 'KeyT', 84, 8);
     const roamEarlier = await pixels(true);
@@ -239,6 +294,7 @@ try {
         site_bytes: siteBytes, site_write_s: writeSeconds, page_load_s: loadSeconds, first_frame_s: firstFrameSeconds,
         equal_share: equalShare, exact_share: exact / (W * H), max_channel_diff: maxDiff, object_iou: iou,
         object_pixels_web: webObjects, object_pixels_native: nativeObjects, position_error_m: error,
+        vehicle_iou: vehicleIoU, vehicle_pixels_web: vWeb, vehicle_pixels_native: vNative,
     }));
 } catch (e) {
     console.log(`FAIL ${e.stack || e}`);

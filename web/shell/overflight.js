@@ -13,7 +13,8 @@
 //
 // Plain JavaScript, no build step, one thread (no server headers needed).
 // `?size=WxH` fixes the drawing buffer's size; `?test=1` stops the frame loop
-// after the first frame and exposes window.overflight for tests/web.
+// after the first frame and exposes window.overflight for tests/web;
+// `?profile=1` times each stage of a frame (Profiler below).
 'use strict';
 
 // sim/KeyState.h's Key values.
@@ -47,12 +48,13 @@ async function fetchBytes(url, total, progress) {
     return out;
 }
 
-// objects.bin (apps/WebSite.h): typed views of the solids and lines.
-function parseObjects(bytes) {
+// objects.bin or vehicle.bin (apps/WebSite.h): typed views of the solids,
+// the lines and the boxes bounding them.
+function parseObjects(bytes, file) {
     const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
     const magic = new TextDecoder().decode(new Uint8Array(buffer, 0, 7));
-    if (magic !== 'OFOBJ01') throw new Error('objects.bin: not an Overflight objects file');
-    const [v, i, l] = new Uint32Array(buffer, 8, 3);
+    if (magic !== 'OFOBJ01') throw new Error(`${file}: not an Overflight objects file`);
+    const [v, i, l, b] = new Uint32Array(buffer, 8, 4);
     let at = 24;
     const take = (Type, n, padTo4 = false) => {
         const a = new Type(buffer, at, n);
@@ -63,6 +65,7 @@ function parseObjects(bytes) {
     return {
         positions: take(Float32Array, 3 * v), normals: take(Float32Array, 3 * v), colors: take(Uint8Array, 3 * v, true),
         indices: take(Uint32Array, i), linePoints: take(Float32Array, 3 * l), lineColors: take(Uint8Array, 3 * l, true),
+        boxes: take(Float32Array, 6 * b),
     };
 }
 
@@ -176,14 +179,36 @@ class Engine {
         return { x: v[0], y: v[1], z: v[2], heading: v[3], velocity: v[4] };
     }
 
+    // The hovercraft body's frame (origin, right, up, forward), into `out` (12 floats).
+    vehicleFrame(out) {
+        out.set(new Float64Array(this.m.HEAPU8.buffer, this.m._of_vehicle_frame(), 12));
+        return out;
+    }
+
+    // The objects' world boxes (6 floats each), which bound of_depth_rect.
+    setObjectBounds(boxes) {
+        const p = this.m._malloc(Math.max(4, boxes.byteLength));
+        if (!p) throw new Error('objects.bin: not enough memory for its boxes');
+        new Float32Array(this.m.HEAPU8.buffer, p, boxes.length).set(boxes);
+        const code = this.m._of_set_object_bounds(p, boxes.length / 6);
+        this.m._free(p);
+        this.check(code, 'objects.bin');
+    }
+
+    // The last frame's pixels objects can cover: [col0, row0, col1, row1], rows from the top.
+    depthRect() {
+        return new Int32Array(this.m.HEAPU8.buffer, this.m._of_depth_rect(), 4);
+    }
+
     physicsSteps() {
         return this.m._of_physics_steps();
     }
 
-    // The viewer's toggles: fog mode (0 off, 1 GL_EXP, 2 atmosphere), sun lighting.
+    // The viewer's toggles: fog mode (0 off, 1 GL_EXP, 2 atmosphere), sun
+    // lighting, the hovercraft drawn (the chase camera).
     toggles() {
         const t = this.m._of_toggles();
-        return { lighting: (t & 2) !== 0, fog: (t >> 4) & 3 };
+        return { lighting: (t & 2) !== 0, fog: (t >> 4) & 3, vehicle: (t & 64) !== 0 };
     }
 
     setCamera(c) {
@@ -225,6 +250,47 @@ function viewProjection(camera, width, height) {
 }
 
 // ---------------------------------------------------------------- WebGL2
+
+// `?profile=1`: each stage of a frame ended by reading one pixel back (so
+// that the software WebGL's work lands in the stage that queued it: Chrome's
+// gl.finish() returned before SwiftShader had drawn, measured) and timed; the
+// milliseconds per stage averaged over the frames since the last report().
+// Off, mark() does nothing: the read-backs stall the page.
+class Profiler {
+    constructor(on) {
+        this.on = on;
+        this.gl = null;
+        this.pixel = new Uint8Array(4);
+        this.sums = {};
+        this.frames = 0;
+        this.t = 0;
+    }
+
+    begin() {
+        if (this.on) this.t = performance.now();
+    }
+
+    mark(stage) {
+        if (!this.on) return;
+        if (this.gl) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.pixel);
+        const now = performance.now();
+        this.sums[stage] = (this.sums[stage] || 0) + now - this.t;
+        this.t = now;
+    }
+
+    end() {
+        if (this.on) ++this.frames;
+    }
+
+    report() {
+        const out = {};
+        for (const [k, v] of Object.entries(this.sums)) out[k] = +(v / Math.max(1, this.frames)).toFixed(2);
+        this.sums = {};
+        this.frames = 0;
+        return out;
+    }
+}
+const profiler = new Profiler(new URLSearchParams(location.search).has('profile'));
 
 function compile(gl, vs, fs) {
     const program = gl.createProgram();
@@ -315,6 +381,28 @@ void main() {
     v_normal = normal;
     v_color = color;
     gl_Position = view_proj * vec4(position - eye, 1.0);
+    gl_Position.y *= flip_y;
+}
+`;
+
+// The hovercraft (vehicle.bin, in its own frame: base centre at the origin,
+// +Z forward) placed by the engine's body frame (sim/VehicleBody.h, as `fly`
+// places it): world = origin + axes * p, its normals turned alike. The
+// origin comes eye-relative (body_offset = origin - eye, in double).
+const kVehicleVs = `
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in vec3 color;
+uniform float flip_y;
+uniform vec3 body_offset;
+uniform mat3 body_axes; // columns: right, up, forward
+out vec3 v_world, v_normal, v_color;
+void main() {
+    vec3 relative = body_offset + body_axes * position;
+    v_world = eye + relative;
+    v_normal = body_axes * normal;
+    v_color = color;
+    gl_Position = view_proj * vec4(relative, 1.0);
     gl_Position.y *= flip_y;
 }
 `;
@@ -455,9 +543,10 @@ function invert4(m) {
 // A view is { viewProj (eye-relative, viewProjection()), eye, sunDir (unit,
 // towards the sun: the engine's, which the time-of-day keys move),
 // fogDensity, air (aerialFrame(), or null: no atmosphere), baked (the
-// terrain's colors unlit) }.
+// terrain's colors unlit), vehicle (the hovercraft's body frame,
+// Engine.vehicleFrame(), or null: none drawn) }.
 class Renderer {
-    constructor(canvas, site, objects) {
+    constructor(canvas, site, objects, vehicle) {
         const gl = canvas.getContext('webgl2', { antialias: false, depth: true, alpha: false, preserveDrawingBuffer: false });
         if (!gl) throw new Error('this browser has no WebGL2');
         this.gl = gl;
@@ -475,6 +564,10 @@ class Renderer {
         this.present = compile(gl, kSkyVs, kPresentFs);
         this.solids = new GlMesh(gl, objects.positions, objects.normals, objects.colors, objects.indices);
         this.lines = new GlMesh(gl, objects.linePoints, null, objects.lineColors, null);
+        this.vehicleProgram = shaded(shade + kVehicleVs, shade + kLitFs);
+        this.vehicle = new GlMesh(gl, vehicle.positions, vehicle.normals, vehicle.colors, vehicle.indices);
+        this.bodyOffset = new Float32Array(3);
+        this.bodyAxes = new Float32Array(9);
         this.fbo = gl.createFramebuffer();
         this.width = 0;
         this.height = 0;
@@ -528,18 +621,35 @@ class Renderer {
         return program;
     }
 
-    // The objects, lit (never baked: the native compositor lights them
-    // whatever the terrain's lighting), depth-tested, no culling.
+    // The objects and the hovercraft, lit by the engine's sun (never baked:
+    // the native compositor lights them whatever the terrain's lighting),
+    // depth-tested, no culling.
     drawObjects(view, flipY) {
         const gl = this.gl;
         gl.enable(gl.DEPTH_TEST);
         gl.depthFunc(gl.LESS);
         gl.depthMask(true);
-        gl.disable(gl.CULL_FACE);
+        // The solids are closed and wound counter-clockwise seen from
+        // outside (gl/ObjectGeometry.h): their back faces are hidden, and
+        // culling them halves SwiftShader's fragments. Drawn upside down
+        // (flipY -1) the winding turns over.
+        gl.enable(gl.CULL_FACE);
+        gl.frontFace(flipY < 0 ? gl.CW : gl.CCW);
         this.use(this.lit, view, flipY, false);
         this.solids.draw(gl.TRIANGLES);
         this.use(this.line, view, flipY, false);
         this.lines.draw(gl.LINES);
+        if (view.vehicle) {
+            const f = view.vehicle;
+            for (let c = 0; c < 3; ++c) this.bodyOffset[c] = f[c] - view.eye[c];
+            this.bodyAxes.set(f.subarray(3, 12));
+            const p = this.use(this.vehicleProgram, view, flipY, false);
+            gl.uniform3fv(p.uniforms.body_offset, this.bodyOffset);
+            gl.uniformMatrix3fv(p.uniforms.body_axes, false, this.bodyAxes);
+            this.vehicle.draw(gl.TRIANGLES);
+        }
+        gl.disable(gl.CULL_FACE);
+        gl.frontFace(gl.CCW);
     }
 
     // The ray caster's frame: its color and depth (rows from the top) loaded
@@ -555,14 +665,24 @@ class Renderer {
         gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
         gl.bindTexture(gl.TEXTURE_2D, this.color);
         gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.RGB, gl.UNSIGNED_BYTE, engine.color());
+        profiler.mark('color');
         gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbo);
         gl.viewport(0, 0, w, h);
-        if (objects) {
-            // The window depth goes straight into the depth attachment (Szenberg eq. 7).
+        const [c0, r0, c1, r1] = engine.depthRect();
+        if (objects && c1 > c0 && r1 > r0) {
+            // The window depth goes straight into the depth attachment
+            // (Szenberg eq. 7), only inside the rectangle objects can cover:
+            // no fragment is drawn outside it, so the stale depth there is
+            // never tested.
             gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
+            gl.pixelStorei(gl.UNPACK_ROW_LENGTH, w);
             gl.bindTexture(gl.TEXTURE_2D, this.depth);
-            gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.DEPTH_COMPONENT, gl.FLOAT, engine.depth());
+            gl.texSubImage2D(gl.TEXTURE_2D, 0, c0, r0, c1 - c0, r1 - r0, gl.DEPTH_COMPONENT, gl.FLOAT,
+                             engine.depth().subarray(r0 * w + c0, (r1 - 1) * w + c1));
+            gl.pixelStorei(gl.UNPACK_ROW_LENGTH, 0);
+            profiler.mark('depth');
             this.drawObjects(view, -1);
+            profiler.mark('objects');
         }
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
         gl.disable(gl.DEPTH_TEST);
@@ -571,6 +691,7 @@ class Renderer {
         gl.bindTexture(gl.TEXTURE_2D, this.color);
         gl.uniform1i(this.present.uniforms.image, 0);
         gl.drawArrays(gl.TRIANGLES, 0, 3);
+        profiler.mark('present');
     }
 
     // The comparison view: the terrain as a WebGL2 mesh (RoamMeshView), the
@@ -746,12 +867,13 @@ async function main() {
     if (!siteResponse.ok) throw new Error(`site.json: ${siteResponse.status} ${siteResponse.statusText}`);
     const site = await siteResponse.json();
     const enginePromise = loadEngineScript().then(async ({ name, factory }) => ({ name, module: await factory() }));
-    const [terrainBytes, objectBytes, atmosphere] = await Promise.all([
+    const [terrainBytes, objectBytes, vehicleBytes, atmosphere] = await Promise.all([
         fetchBytes(site.terrain.file, site.terrain.bytes, (got, total) => {
             fill.style.width = `${(100 * got) / total}%`;
             status.textContent = `loading the terrain: ${(got / 1e6).toFixed(1)} of ${(total / 1e6).toFixed(1)} MB`;
         }),
         fetchBytes(site.objects.file, site.objects.bytes, () => {}),
+        fetchBytes(site.vehicle.file, site.vehicle.bytes, () => {}),
         fetch('atmosphere.glsl').then((r) => {
             if (!r.ok) throw new Error(`atmosphere.glsl: ${r.status} ${r.statusText}`);
             return r.text();
@@ -762,8 +884,14 @@ async function main() {
     const engine = new Engine(loaded.module);
     engine.loadTerrain(terrainBytes);
     const terrain = parseTerrain(terrainBytes);
-    const renderer = new Renderer(canvas, { environment: terrain.environment, atmosphere }, parseObjects(objectBytes));
+    const objects = parseObjects(objectBytes, site.objects.file);
+    engine.setObjectBounds(objects.boxes);
+    const renderer = new Renderer(canvas, { environment: terrain.environment, atmosphere }, objects,
+                                  parseObjects(vehicleBytes, site.vehicle.file));
+    const vehicleFrame = new Float64Array(12);
+    let showVehicle = true; // tests hide it
     const roam = new RoamMeshView(renderer.gl); // the comparison view's mesh
+    profiler.gl = renderer.gl;
 
     const fixed = /^(\d+)x(\d+)$/.exec(params.get('size') || '');
     const resize = () => {
@@ -789,12 +917,15 @@ async function main() {
             fogDensity: fogDensity(terrain, toggles.fog),
             air: toggles.fog === 2 ? aerialFrame({ ...terrain.environment, sun_dir: sunDir }, camera.eye[1]) : null,
             baked: !toggles.lighting,
+            vehicle: toggles.vehicle && showVehicle ? engine.vehicleFrame(vehicleFrame) : null,
         };
         if (state.view === 'voxel') {
             renderer.drawCast(engine, view, state.objects);
         } else {
             roam.update(engine.mesh());
+            profiler.mark('mesh upload');
             renderer.drawMesh(engine.width, engine.height, view, roam, state.wireframe);
+            profiler.mark('mesh draw');
         }
     };
 
@@ -831,13 +962,17 @@ async function main() {
         if (!running) return;
         resize();
         const t = performance.now();
+        profiler.mark('browser'); // since the last frame's end: compositing, events, idle
         engine.frame(Math.max(0, (now - last) / 1000));
+        profiler.mark('engine');
         // The engine's share of a frame (physics, camera, cast), smoothed.
         state.engineMs += 0.05 * (performance.now() - t - state.engineMs);
         last = now;
         draw();
         ++state.frames;
         showHud();
+        profiler.mark('hud');
+        profiler.end();
         requestAnimationFrame(tick);
     };
     const start = () => {
@@ -920,6 +1055,21 @@ async function main() {
             return { vehicle: engine.vehicle(), steps: engine.physicsSteps() - before };
         },
         vehicle: () => engine.vehicle(),
+        profile: () => profiler.report(),
+        // One frame of the chase camera, with or without the hovercraft: the
+        // canvas as base64 RGBA, the frame's camera and vehicle, and the
+        // rectangle objects can cover.
+        chase(vehicle) {
+            engine.followVehicle();
+            engine.frame(0);
+            showVehicle = vehicle;
+            draw();
+            showVehicle = true;
+            return {
+                pixels: toBase64(renderer.readPixels()), camera: engine.camera(), vehicle: engine.vehicle(),
+                depthRect: Array.from(engine.depthRect()),
+            };
+        },
     };
 }
 
