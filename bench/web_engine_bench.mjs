@@ -70,7 +70,7 @@ for (let k = 0; k < frames; ++k) {
     for (let i = 0; i < names.length; ++i) pinnedSums[i] += s[i];
   }
 }
-const pinnedParts = names.map((n, i) => `${n} ${(pinnedSums[i] / frames).toFixed(2)}`).join(', ');
-console.log(`pinned: ${((performance.now() - tp) / frames).toFixed(2)} ms per frame (${pinnedParts}); natively: overflight bench demo ` +
+const pinnedParts = M._of_frame_stats ? ` (${names.map((n, i) => `${n} ${(pinnedSums[i] / frames).toFixed(2)}`).join(', ')})` : '';
+console.log(`pinned: ${((performance.now() - tp) / frames).toFixed(2)} ms per frame${pinnedParts}; natively: overflight bench demo ` +
             `--size ${size} --threads 1 --methods voxel --eye ${x},${y},${z} --heading ${heading} --pitch ${pitch} ` +
             `--fov ${fov} --near ${near} --far ${far}`);
