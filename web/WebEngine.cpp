@@ -79,6 +79,7 @@ struct Engine {
     std::optional<RoamKey> mesh_for; // empty: no mesh yet, or a new terrain
     double mesh_version = 0;
     double roam_stats[8] = {};
+    double frame_stats[8] = {};
     double sun[5] = {};
     float view_proj[16] = {};
     double camera[8] = {};
@@ -93,6 +94,10 @@ struct Engine {
 Engine& engine() {
     static Engine e;
     return e;
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Runs `f`, turning an exception into `code` (Error) or OF_FAILED (anything
@@ -130,7 +135,7 @@ void roam_frame(Engine& e, const Camera& cam) {
     const auto t0 = std::chrono::steady_clock::now();
     const RoamStats s = f.roam->tessellate(cam, e.roam_budget, focus);
     f.roam->write_mesh(e.mesh);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms = ms_since(t0);
     const double stats[8] = {double(e.mesh.triangle_count()), double(e.mesh.positions.size()), double(s.splits),
                              double(s.forced_splits), double(s.max_level), s.max_error_px, s.mean_error_px, ms};
     std::copy(stats, stats + 8, e.roam_stats);
@@ -179,6 +184,9 @@ int of_frame(double wall_seconds) {
         return OF_NO_TERRAIN;
     }
     return guarded(OF_FAILED, [&](Engine& en) {
+        const auto t0 = std::chrono::steady_clock::now();
+        double* fs = en.frame_stats;
+        std::fill(fs, fs + 8, 0.0);
         FlightSession& s = *en.flight->session;
         // The detail keys step the ROAM budget as `fly` does; the other
         // commands (method, screenshot, quit) are the page's.
@@ -191,11 +199,19 @@ int of_frame(double wall_seconds) {
         cam.width = en.width;
         cam.height = en.height;
         const Environment env = s.environment();
+        fs[1] = ms_since(t0);
         if (en.method == OF_METHOD_ROAM) {
+            const double built = en.mesh_version;
             roam_frame(en, cam);
+            if (en.mesh_version != built) fs[7] = en.roam_stats[7];
         } else {
             VoxelFrameStats stats;
             en.flight->renderer->render(cam, env, en.color, en.depth, stats);
+            fs[2] = stats.light_ms;
+            fs[3] = stats.raycast.ms_setup;
+            fs[4] = stats.raycast.ms_cast;
+            fs[5] = stats.raycast.ms_resolve;
+            fs[6] = stats.water_ms;
         }
         const SunAngles sun = sun_angles(env.sun_dir);
         const glm::dvec3 to_sun = glm::normalize(glm::dvec3(env.sun_dir));
@@ -221,6 +237,7 @@ int of_frame(double wall_seconds) {
         const int rect[4] = {r.col0, r.row0, r.col1, r.row1};
         std::copy(rect, rect + 4, en.depth_rect);
         s.end_frame();
+        fs[0] = ms_since(t0);
     });
 }
 
@@ -251,6 +268,7 @@ int of_mesh_index_count() { return int(engine().mesh.indices.size()); }
 double of_mesh_version() { return engine().mesh_version; }
 const double* of_roam_stats() { return engine().roam_stats; }
 const double* of_sun() { return engine().sun; }
+const double* of_frame_stats() { return engine().frame_stats; }
 
 std::uint8_t* of_color() { return reinterpret_cast<std::uint8_t*>(engine().color.pixels.data()); }
 float* of_depth() { return engine().depth.pixels.data(); }

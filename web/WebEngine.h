@@ -100,6 +100,13 @@ OF_EXPORT float* of_depth();
 OF_EXPORT int of_width();
 OF_EXPORT int of_height();
 
+// What the last frame cost, in milliseconds: {the whole of_frame, the
+// physics and camera (sim/FlightSession.h), the voxel method's lighting (0
+// unless relit), its per-frame tables, cast, resolve (raycast/RaycastOptions.h
+// RaycastStats: cast and resolve are fused per block, their wall time split
+// by thread time) and water pass, the ROAM tessellation}.
+OF_EXPORT const double* of_frame_stats();
+
 // The last frame's projection * view (16 floats, column-major, world
 // coordinates in, clip coordinates out): what the native object pass uses.
 OF_EXPORT const float* of_view_proj();

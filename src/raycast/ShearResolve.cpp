@@ -15,6 +15,10 @@
 #if defined(__SSE2__) || OVERFLIGHT_RESOLVE_AVX2
 #include <immintrin.h>
 #endif
+#if defined(__wasm_simd128__)
+#define OVERFLIGHT_RESOLVE_SIMD128 1
+#include <wasm_simd128.h>
+#endif
 
 namespace overflight {
 
@@ -349,6 +353,123 @@ void resolve_block_avx2(const ShearResolveTables& t, const Lanes& lanes, const S
 }
 #endif
 
+#if OVERFLIGHT_RESOLVE_SIMD128
+// 4 entries of `table` at the lanes of `i`, one by one: WebAssembly SIMD has
+// no gather.
+inline v128_t lookup4(const std::uint32_t* table, v128_t i) {
+    return wasm_u32x4_make(table[wasm_i32x4_extract_lane(i, 0)], table[wasm_i32x4_extract_lane(i, 1)],
+                           table[wasm_i32x4_extract_lane(i, 2)], table[wasm_i32x4_extract_lane(i, 3)]);
+}
+inline v128_t lookup4(const float* table, v128_t i) {
+    return wasm_f32x4_make(table[wasm_i32x4_extract_lane(i, 0)], table[wasm_i32x4_extract_lane(i, 1)],
+                           table[wasm_i32x4_extract_lane(i, 2)], table[wasm_i32x4_extract_lane(i, 3)]);
+}
+
+// Lanes i..i+3 of a full block's image row (row_c, row_d: the run's first
+// pixel): 4 packed colors to 12 bytes of Rgb8, stored as 16 whose last 4 the
+// next store overwrites; the last 4 pixels store exactly 12 (the next block's
+// pixels are not this block's to write).
+inline void store_lanes_simd128(v128_t pixel, v128_t depth, int i, Rgb8* row_c, float* row_d) {
+    const v128_t rgb = wasm_i8x16_shuffle(pixel, pixel, 0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15);
+    unsigned char* oc = reinterpret_cast<unsigned char*>(row_c + i);
+    if (i + 4 < kShearBlock) {
+        wasm_v128_store(oc, rgb);
+    } else {
+        const std::uint64_t lo = std::uint64_t(wasm_i64x2_extract_lane(rgb, 0));
+        const std::uint32_t hi = std::uint32_t(wasm_i32x4_extract_lane(rgb, 2));
+        std::memcpy(oc, &lo, 8);
+        std::memcpy(oc + 8, &hi, 4);
+    }
+    wasm_v128_store(row_d + i, depth);
+}
+
+// resolve_rows_portable for GL_EXP fog and the sky gradient in 4 lanes (the
+// table lookups lane by lane): the same operations in the same order, so the
+// same bits. kEven: the view depth computed from the slice index, as
+// resolve_rows_avx2. A full block's pixels go to the images straight from
+// the registers.
+template <bool kTerrain, bool kSky, bool kEven>
+void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, int H, int j0, int j1,
+                          const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                          std::size_t W) {
+    const v128_t one = wasm_f32x4_splat(1.0f), half = wasm_f32x4_splat(0.5f);
+    const v128_t d_first = wasm_f32x4_splat(t.d_first), d_step = wasm_f32x4_splat(t.d_step);
+    const v128_t fog_step = wasm_f32x4_splat(t.fog->inv_step());
+    const v128_t fog_last = wasm_i32x4_splat(FogTable::kEntries);
+    const v128_t sky_scale = wasm_f32x4_splat(float(SkyTable::kEntries - 1));
+    const v128_t sky_last = wasm_i32x4_splat(SkyTable::kEntries - 1);
+    const v128_t mask_rb = wasm_i32x4_splat(0xFF00FF), mask_g = wasm_i32x4_splat(0x00FF00);
+    const v128_t fog_rb = wasm_i32x4_splat(int(t.fog_color & 0xFF00FFu));
+    const v128_t fog_g = wasm_i32x4_splat(int(t.fog_color & 0x00FF00u));
+    const v128_t w_full = wasm_i32x4_splat(256);
+    const bool direct = blk.n == kShearBlock;
+    for (int j = j0; j < j1; ++j) {
+        const float mj = t.row_m[j];
+        const v128_t m = wasm_f32x4_splat(mj), m2 = wasm_f32x4_splat(mj * mj);
+        const v128_t jv = wasm_i32x4_splat(j);
+        const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
+        const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
+        const std::size_t row = image_row(blk, H, j, W, out_c, out_d);
+        alignas(16) std::uint32_t px[kShearBlock];
+        alignas(16) float zs[kShearBlock];
+        for (int i = 0; i < kShearBlock; i += 4) {
+            const v128_t len = wasm_f32x4_sqrt(wasm_f32x4_add(wasm_v128_load(blk.len2 + i), m2));
+            const v128_t terrain = kTerrain && kSky ? wasm_i32x4_gt(wasm_v128_load(blk.jend + i), jv)
+                                                    : wasm_i32x4_splat(kTerrain ? -1 : 0);
+            v128_t fogged = wasm_i32x4_splat(0), sky = wasm_i32x4_splat(0), z = one;
+            if constexpr (kTerrain) {
+                // Sky lanes read slice 0 (their entries are stale).
+                const v128_t k = wasm_v128_and(wasm_v128_load(ss + i), terrain);
+                z = lookup4(t.slice_depth, k);
+                const v128_t d = kEven ? wasm_f32x4_add(d_first, wasm_f32x4_mul(d_step, wasm_f32x4_convert_i32x4(k)))
+                                       : lookup4(t.slice_d, k);
+                const v128_t x = wasm_f32x4_add(wasm_f32x4_mul(wasm_f32x4_mul(d, len), fog_step), half);
+                const v128_t a = lookup4(t.fog->entries(), wasm_i32x4_min(wasm_i32x4_trunc_sat_f32x4(x), fog_last));
+                const v128_t b = wasm_i32x4_sub(w_full, a);
+                const v128_t c = wasm_v128_load(sc + i);
+                // fog_blend, lane by lane.
+                const v128_t rb = wasm_i32x4_add(wasm_i32x4_mul(wasm_v128_and(c, mask_rb), a),
+                                                 wasm_i32x4_add(wasm_i32x4_mul(fog_rb, b), wasm_i32x4_splat(0x800080)));
+                const v128_t g = wasm_i32x4_add(wasm_i32x4_mul(wasm_v128_and(c, mask_g), a),
+                                                wasm_i32x4_add(wasm_i32x4_mul(fog_g, b), wasm_i32x4_splat(0x008000)));
+                fogged = wasm_v128_or(wasm_v128_and(wasm_u32x4_shr(rb, 8), mask_rb),
+                                      wasm_v128_and(wasm_u32x4_shr(g, 8), mask_g));
+            }
+            if constexpr (kSky) {
+                // SkyTable::lookup.
+                const v128_t x = wasm_f32x4_add(wasm_f32x4_mul(wasm_f32x4_div(m, len), sky_scale), half);
+                const v128_t e = wasm_i32x4_max(wasm_i32x4_min(wasm_i32x4_trunc_sat_f32x4(x), sky_last),
+                                                wasm_i32x4_splat(0));
+                sky = lookup4(t.sky, e);
+            }
+            const v128_t pixel = wasm_v128_bitselect(fogged, sky, terrain);
+            const v128_t depth = wasm_v128_bitselect(z, one, terrain);
+            if (direct) {
+                store_lanes_simd128(pixel, depth, i, out_c + row, out_d + row);
+            } else {
+                wasm_v128_store(px + i, pixel);
+                wasm_v128_store(zs + i, depth);
+            }
+        }
+        if (!direct) write_run(px, zs, blk.n, out_c + row, out_d + row);
+    }
+}
+
+// The block's rows with the SIMD128 kernel, as resolve_block_avx2.
+void resolve_block_simd128(const ShearResolveTables& t, const ShearBlock& blk, int H, int jmin, int jmax,
+                           const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                           std::size_t W) {
+    if (t.d_step > 0.0f) {
+        resolve_rows_simd128<true, false, true>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+        resolve_rows_simd128<true, true, true>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    } else {
+        resolve_rows_simd128<true, false, false>(t, blk, H, 0, jmin, color, slice, out_c, out_d, W);
+        resolve_rows_simd128<true, true, false>(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+    }
+    resolve_rows_simd128<false, true, false>(t, blk, H, jmax, H, color, slice, out_c, out_d, W);
+}
+#endif
+
 } // namespace
 
 bool resolve_kernel_available(ResolveKernel kernel) {
@@ -367,6 +488,12 @@ bool resolve_kernel_available(ResolveKernel kernel) {
 #else
         return false;
 #endif
+    case ResolveKernel::Simd128:
+#if OVERFLIGHT_RESOLVE_SIMD128
+        return true;
+#else
+        return false;
+#endif
     }
     return false;
 }
@@ -379,12 +506,20 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
         jmin = std::min(jmin, blk.jend[i]);
         jmax = std::max(jmax, blk.jend[i]);
     }
-    static const bool avx2 = resolve_kernel_available(ResolveKernel::Avx2);
-    if (kernel == ResolveKernel::Auto) kernel = avx2 ? ResolveKernel::Avx2 : ResolveKernel::Portable;
+    static const ResolveKernel fastest = resolve_kernel_available(ResolveKernel::Avx2)      ? ResolveKernel::Avx2
+                                         : resolve_kernel_available(ResolveKernel::Simd128) ? ResolveKernel::Simd128
+                                                                                              : ResolveKernel::Portable;
+    if (kernel == ResolveKernel::Auto) kernel = fastest;
 #if OVERFLIGHT_RESOLVE_AVX2
     if (kernel == ResolveKernel::Avx2 || kernel == ResolveKernel::Avx512) {
         if (t.air) resolve_block_avx2(t, AirLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         else resolve_block_avx2(t, FogLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        return;
+    }
+#endif
+#if OVERFLIGHT_RESOLVE_SIMD128
+    if (kernel == ResolveKernel::Simd128 && !t.air) {
+        resolve_block_simd128(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         return;
     }
 #endif

@@ -52,8 +52,10 @@ struct ShearBlock {
 // the fastest the CPU runs; the others, for tests and measurements, must be
 // resolve_kernel_available(). Avx512 (AVX-512 F, BW, DQ and VL) has a kernel
 // of its own in the imagery's drape (ShearDrape.h); the resolve runs its
-// AVX2 kernel for it.
-enum class ResolveKernel { Auto, Portable, Avx2, Avx512 };
+// AVX2 kernel for it. Simd128 is WebAssembly's (a build with -msimd128): the
+// GL_EXP fog and sky gradient in 4 lanes; the aerial perspective runs the
+// portable kernel there.
+enum class ResolveKernel { Auto, Portable, Avx2, Avx512, Simd128 };
 bool resolve_kernel_available(ResolveKernel kernel);
 
 // Resolves rows [0, H) of a block. color/slice hold, at j * kShearBlock + i,
