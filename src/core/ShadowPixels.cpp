@@ -3,9 +3,7 @@
 
 #include "core/Parallel.h"
 
-#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
-#include <glm/mat4x4.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -66,9 +64,6 @@ std::vector<PixelRect> shadow_pixels(const DepthImage& depth, const Camera& came
             e.n1 = std::max(e.n1, n + g);
         }
     }
-    // Clip -> eye-relative world, as the pass inverts it (in double here).
-    const glm::dmat4 clip_to_eye =
-        glm::inverse(camera.projection_matrix() * camera.view_matrix() * glm::translate(glm::dmat4(1.0), camera.eye));
     const double near = camera.near;
     const Terrain* terrain = grid.terrain;
     const int grid_cols = terrain ? (terrain->cols() - 1) / grid.stride + 1 : 0;
@@ -79,14 +74,16 @@ std::vector<PixelRect> shadow_pixels(const DepthImage& depth, const Camera& came
     // besides the depth's (relative to the distance, `rel` below).
     const double absolute = 1e-3 * cell + 1e-6 * (std::abs(camera.eye.x) + std::abs(camera.eye.y) + std::abs(camera.eye.z));
 
-    // Whether the pixel (col, row) may be darkened by one of the `active` casters.
-    const auto shadowed = [&](int col, int row, std::span<const int> active) {
+    // Whether the pixel (col, row) may be darkened by one of the `active`
+    // casters; ray0 + col dray is the row's ray through the pixel (Camera::ray).
+    const auto shadowed = [&](int col, int row, const glm::dvec3& ray0, const glm::dvec3& dray,
+                              std::span<const int> active) {
         const double d = depth.at(col, row);
         if (d >= 1.0) return false; // sky: the pass discards it
-        const glm::dvec4 ndc((col + 0.5) / width * 2.0 - 1.0, (height - 1 - row + 0.5) / height * 2.0 - 1.0,
-                             d * 2.0 - 1.0, 1.0);
-        const glm::dvec4 e = clip_to_eye * ndc;
-        const glm::dvec3 r = glm::dvec3(e) / e.w; // the point, eye-relative: X(t) = eye + t r, X(1) the point
+        // The ray through the pixel centre, of unit length along the view
+        // axis, linear along the row, times the view depth: the point the
+        // pass rebuilds from the depth through the inverse matrices.
+        const glm::dvec3 r = (ray0 + double(col) * dray) * camera.view_depth_of_window(d);
         const double dist = glm::length(r);
         if (!(dist < HUGE_VAL)) return true;
         const double rel = 1e-5 + 4e-7 * dist / near;
@@ -137,8 +134,6 @@ std::vector<PixelRect> shadow_pixels(const DepthImage& depth, const Camera& came
         // The segment's ends across the sun: (pu, pv) and (qu, qv).
         const double pu = t0 * ur, pv = t0 * vr, qu = t1 * ur, qv = t1 * vr;
         for (const int i : active) {
-            const PixelRect& rect = rects[std::size_t(i)];
-            if (col < rect.col0 || col >= rect.col1) continue;
             const SunExtent& x = extent[std::size_t(i)];
             if (!(u1 >= x.u0 && u0 <= x.u1 && v1 >= x.v0 && v0 <= x.v1 && w0 <= x.w1)) continue;
             const double pd = pu * x.du + pv * x.dv, qd = qu * x.du + qv * x.dv;
@@ -153,24 +148,35 @@ std::vector<PixelRect> shadow_pixels(const DepthImage& depth, const Camera& came
     // Each row's runs [col0, col1) of pixels to keep.
     std::vector<std::vector<std::pair<int, int>>> runs(std::size_t(std::max(height, 0)));
     parallel::for_each_range(0, height, 16, [&](int first, int last) {
-        std::vector<int> active;
+        std::vector<int> active, here, cuts;
         for (int row = first; row < last; ++row) {
             active.clear();
-            int c0 = width, c1 = 0;
+            cuts.clear();
             for (std::size_t i = 0; i < rects.size(); ++i) {
                 const PixelRect& rect = rects[i];
                 if (rect.empty() || row < rect.row0 || row >= rect.row1) continue;
                 active.push_back(int(i));
-                c0 = std::min(c0, rect.col0);
-                c1 = std::max(c1, rect.col1);
+                cuts.insert(cuts.end(), {rect.col0, rect.col1});
             }
+            std::sort(cuts.begin(), cuts.end());
+            cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
             auto& out = runs[std::size_t(row)];
-            for (int col = c0; col < c1; ++col) {
-                if (!shadowed(col, row, active)) continue;
-                if (!out.empty() && out.back().second == col)
-                    out.back().second = col + 1;
-                else
-                    out.emplace_back(col, col + 1);
+            const glm::dvec3 ray0 = camera.ray(camera.u_of(0), camera.v_of(row));
+            const glm::dvec3 dray = camera.ray(camera.u_of(1), camera.v_of(row)) - ray0;
+            // Between consecutive cuts the same casters' rectangles hold the pixels.
+            for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+                const int c0 = cuts[k], c1 = cuts[k + 1];
+                here.clear();
+                for (const int i : active)
+                    if (rects[std::size_t(i)].col0 <= c0 && rects[std::size_t(i)].col1 >= c1) here.push_back(i);
+                if (here.empty()) continue;
+                for (int col = c0; col < c1; ++col) {
+                    if (!shadowed(col, row, ray0, dray, here)) continue;
+                    if (!out.empty() && out.back().second == col)
+                        out.back().second = col + 1;
+                    else
+                        out.emplace_back(col, col + 1);
+                }
             }
         }
     });

@@ -254,7 +254,11 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
         // The shadows' reach, worked out once for the frame: for its depth
         // load and its pass.
         const ShadowReach& reach = out ? drawn_reach_ : staged_reach_[std::size_t(slot)];
-        if (out && options.objects) object_shadow_reach(camera, environment, options, out->depth, drawn_reach_);
+        if (out && options.objects) {
+            const auto t0 = std::chrono::steady_clock::now();
+            object_shadow_reach(camera, environment, options, out->depth, drawn_reach_);
+            timer.cpu_step_since("shadow_reach", t0);
+        }
         draw_images(out, slot, camera, reach, *into, timer, options);
         if (options.objects && (object_shadow_.active() || vehicle_shadow_.active()) && !reach.rects.empty()) {
             timer.begin_gl("object_shadows");
