@@ -32,7 +32,9 @@
 // objects cast theirs onto the terrain and each other through a shadow map
 // from the sun (ObjectShadowMap, rendered when the sun moves), read in
 // shade() and, on the ray casters' images, by ShadowScreenPass
-// ("object_shadows"). The vehicle casts its shadow the same way through a
+// ("object_shadows") over the pixels core/ShadowPixels.h finds on the CPU
+// from the image's depth ("shadow_reach" when draw() works it out; stage()
+// does it on the staging thread, untimed). The vehicle casts its shadow the same way through a
 // second map fitted to it alone, rendered whenever it moved.
 //
 // Fog used by every program (the ray caster matches it, raycast/Atmosphere.h):
