@@ -35,13 +35,17 @@
 
 namespace overflight {
 
+class HeightBounds;
+
 // The grid of terrain samples the pass snaps its points to: every `stride`-th
 // sample of `terrain` in each direction, `texels_per_unit` of them per world
-// unit as the pass computes it (float).
+// unit as the pass computes it (float). `bounds`: HeightBounds(*terrain,
+// stride) kept by the caller across frames; null: built by each call.
 struct SnapGrid {
     const Terrain* terrain = nullptr;
     int stride = 1;
     float texels_per_unit = 1.0f;
+    const HeightBounds* bounds = nullptr;
 };
 
 // What casts a shadow: the convex hull of `points` grown by `margin` every way.
@@ -58,8 +62,15 @@ struct ShadowCaster {
 // sun's frame, one along the line from its first point to its last (a run
 // of cable crossing the view diagonally). Each row's runs of such pixels,
 // merged with the rows below while they are the same. No GL: any thread.
+//
+// Cost: the per-pixel test runs only in tiles of 8 x 8 pixels that some
+// caster may shadow, judged from the tile's nearest and farthest depth and
+// the lowest and highest sample top near it (the hull of every point its
+// pixels may test); the other tiles cost a read of their depths.
+// `per_tile` false: every pixel in the rectangles is tested (the same
+// result, for tests of the tiles' rejection).
 std::vector<PixelRect> shadow_pixels(const DepthImage& depth, const Camera& camera, const SnapGrid& grid,
                                      const glm::vec3& sun, std::span<const ShadowCaster> casters,
-                                     std::span<const PixelRect> rects);
+                                     std::span<const PixelRect> rects, bool per_tile = true);
 
 } // namespace overflight

@@ -51,6 +51,7 @@ Compositor::Compositor(const Terrain& terrain, const Scene& scene) : terrain_(te
     objects_.set_scene(scene, terrain);
     object_texel_ = ObjectShadowMap::texel_bound(objects_.bounds(), ObjectShadowMap::kSize);
     snap_ = ShadowCeilingTexture::grid(terrain);
+    snap_bounds_ = HeightBounds(terrain, snap_.stride);
     if (const ImageryPyramid* imagery = terrain.imagery()) imagery_texture_.upload(*imagery);
 }
 
@@ -188,7 +189,9 @@ void Compositor::object_shadow_reach(const Camera& camera, const Environment& en
     // pixels and a thin margin, where the rectangles (a house's reaches
     // down to the lowest sample of the blocks under it) held hundreds of
     // thousands of pixels that no shadow reaches.
-    reach.rects = depth ? shadow_pixels(*depth, camera, snap_, sun, casters, rects) : disjoint_cover(rects);
+    SnapGrid grid = snap_;
+    grid.bounds = &snap_bounds_;
+    reach.rects = depth ? shadow_pixels(*depth, camera, grid, sun, casters, rects) : disjoint_cover(rects);
     for (const PixelRect& r : reach.rects) reach.rect = bounding_union(reach.rect, r);
 }
 

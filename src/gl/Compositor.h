@@ -49,6 +49,7 @@
 // CMSC 23700 hovercraft project sec. 3-4 (vehicle, sun, fog, sky).
 #include "core/Camera.h"
 #include "core/DataSet.h"
+#include "core/HeightBounds.h"
 #include "core/SharedSunShadow.h"
 #include "gl/BlockTerrain.h"
 #include "gl/FlightVehicle.h"
@@ -172,6 +173,7 @@ private:
     float terrain_min_ = 0;        // the lowest of block_min_: the terrain's lowest sample
     float object_texel_ = 0;       // ObjectShadowMap::texel_bound of the objects' map
     SnapGrid snap_;                // the samples ShadowScreenPass snaps to (ShadowCeilingTexture::grid)
+    HeightBounds snap_bounds_;     // their heights' bounds (snap_.bounds when shadow_pixels is called)
     FrameUniforms frame_;
     SharedSunShadow* shared_shadow_ = nullptr; // share_sun_shadow()
     ShadowCeiling shadow_;                     // without shared_shadow_

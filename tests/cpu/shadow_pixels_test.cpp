@@ -144,5 +144,48 @@ TEST(ShadowPixels, OnlyWithinTheGivenRectangles) {
         EXPECT_LE(r.col1, 20);
 }
 
+// The tiles' rejection passes over only pixels the per-pixel test would not
+// keep: on a rough terrain (the pass moves points onto sample tops above and
+// below them), a camera that sees the horizon (level rays keep their
+// pixels) and casters of both kinds under a low sun, each caster within its
+// own rectangle, the two give the same rectangles.
+TEST(ShadowPixels, TilesKeepWhatThePixelsKeep) {
+    Scene s;
+    for (int r = 0; r < s.terrain.rows(); ++r)
+        for (int c = 0; c < s.terrain.cols(); ++c) s.terrain.raw(r, c) = std::uint16_t((r * 7 + c * 13 + r * c) % 5);
+    s.camera = test::camera_at({32, 12, 80}, 180, -8, 300, 203, 131);
+    s.depth.resize(s.camera.width, s.camera.height, 1.0f);
+    // A plane among the tops (heights 0..4), up to a distance: sky beyond.
+    for (int row = 0; row < s.camera.height; ++row)
+        for (int col = 0; col < s.camera.width; ++col) {
+            const glm::dvec3 r = s.camera.ray(s.camera.u_of(col), s.camera.v_of(row));
+            if (!(r.y < 0)) continue;
+            const double t = (2.0 - s.camera.eye.y) / r.y; // view depth
+            if (t < 150) s.depth.at(col, row) = float(s.camera.window_depth(t));
+        }
+    const BoxCaster house(WorldBox{{30, 0, 40}, {36, 7, 46}});
+    const BoxCaster tower(WorldBox{{20, 0, 30}, {21, 25, 31}});
+    const std::vector<glm::vec3> cable{{21, 24, 31}, {32, 22, 45}, {44, 24, 60}};
+    const std::vector<ShadowCaster> casters{house.caster(), tower.caster(), {cable, 0.3f}};
+    const std::vector<PixelRect> rects{{0, 0, s.camera.width, s.camera.height},
+                                       {13, 20, 150, 131},
+                                       {40, 0, 203, 90}};
+    for (const glm::vec3 sun : {glm::normalize(glm::vec3(-1.0f, 0.45f, 0.4f)), glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f))}) {
+        const SnapGrid grid{&s.terrain, 1, 1.0f};
+        const std::vector<PixelRect> tiles = shadow_pixels(s.depth, s.camera, grid, sun, casters, rects);
+        const std::vector<PixelRect> pixels = shadow_pixels(s.depth, s.camera, grid, sun, casters, rects, false);
+        long long kept = 0;
+        for (const PixelRect& r : pixels) kept += r.area();
+        EXPECT_GT(kept, 200) << "the test must keep pixels";
+        ASSERT_EQ(tiles.size(), pixels.size());
+        for (std::size_t i = 0; i < tiles.size(); ++i) {
+            EXPECT_EQ(tiles[i].col0, pixels[i].col0);
+            EXPECT_EQ(tiles[i].row0, pixels[i].row0);
+            EXPECT_EQ(tiles[i].col1, pixels[i].col1);
+            EXPECT_EQ(tiles[i].row1, pixels[i].row1);
+        }
+    }
+}
+
 } // namespace
 } // namespace overflight
