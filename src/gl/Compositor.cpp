@@ -3,6 +3,7 @@
 #include "gl/Compositor.h"
 
 #include "core/Error.h"
+#include "core/ShadowPixels.h"
 
 #include <glm/geometric.hpp>
 
@@ -49,6 +50,8 @@ Compositor::Compositor(const Terrain& terrain, const Scene& scene) : terrain_(te
     terrain_min_ = *std::min_element(block_min_.begin(), block_min_.end());
     objects_.set_scene(scene, terrain);
     object_texel_ = ObjectShadowMap::texel_bound(objects_.bounds(), ObjectShadowMap::kSize);
+    snap_ = ShadowCeilingTexture::grid(terrain);
+    snap_bounds_ = HeightBounds(terrain, snap_.stride);
     if (const ImageryPyramid* imagery = terrain.imagery()) imagery_texture_.upload(*imagery);
 }
 
@@ -124,7 +127,7 @@ void Compositor::stage(int slot, const MethodOutput& out, const Camera& camera, 
     stream_.stage_color(slot, *out.color);
     if (!options.objects) return;
     ShadowReach& reach = staged_reach_[std::size_t(slot)];
-    object_shadow_reach(camera, environment, options, reach);
+    object_shadow_reach(camera, environment, options, out.depth, reach);
     stream_.stage_depth(slot, *out.depth, depth_rect(camera, options, reach.rect));
 }
 
@@ -134,7 +137,8 @@ CompositeCounts Compositor::draw_staged(int slot, const Camera& camera, const En
 }
 
 void Compositor::object_shadow_reach(const Camera& camera, const Environment& environment,
-                                     const CompositeOptions& options, ShadowReach& reach) const {
+                                     const CompositeOptions& options, const DepthImage* depth,
+                                     ShadowReach& reach) const {
     reach.rects.clear();
     reach.rect = {};
     // As begin() and ObjectShadowMap::update() decide it: shadows on, the sun
@@ -154,8 +158,14 @@ void Compositor::object_shadow_reach(const Camera& camera, const Environment& en
     // floor again, twice over.
     // Each caster grown by two texels of its shadow map, as the map's
     // filtered lookup darkens up to a texel past the caster's outline.
-    const auto add = [&](const WorldBox& bounds, float texel) {
-        const WorldBox caster{bounds.lo - glm::vec3(2.0f * texel), bounds.hi + glm::vec3(2.0f * texel)};
+    std::vector<ShadowCaster> casters;
+    std::vector<PixelRect> rects;
+    const auto add = [&](std::span<const glm::vec3> points, float texel) {
+        WorldBox caster{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(-std::numeric_limits<float>::max())};
+        for (const glm::vec3& p : points) {
+            caster.lo = glm::min(caster.lo, p - glm::vec3(2.0f * texel));
+            caster.hi = glm::max(caster.hi, p + glm::vec3(2.0f * texel));
+        }
         float floor = terrain_min_;
         WorldBox box = ObjectShadowMap::reach({caster}, sun, floor).front();
         for (int pass = 0; pass < 2; ++pass) {
@@ -163,14 +173,25 @@ void Compositor::object_shadow_reach(const Camera& camera, const Environment& en
             if (environment.water) floor = std::max(floor, environment.water_level);
             box = ObjectShadowMap::reach({caster}, sun, floor).front();
         }
-        reach.rects.push_back(screen_rect(std::span<const WorldBox>(&box, 1), camera));
+        casters.push_back({points, 2.0f * texel});
+        rects.push_back(screen_rect(std::span<const WorldBox>(&box, 1), camera));
     };
-    for (const WorldBox& caster : objects_.bounds()) add(caster, object_texel_);
+    for (const std::vector<glm::vec3>& caster : objects_.casters()) add(caster, object_texel_);
+    std::array<glm::vec3, 8> vehicle;
     if (options.vehicle) {
         const WorldBox box = vehicle_.bounds_at(options.vehicle->x, options.vehicle->z, options.vehicle->heading);
-        add(box, ObjectShadowMap::texel_bound({box}, ObjectShadowMap::kVehicleSize));
+        for (int c = 0; c < 8; ++c)
+            vehicle[std::size_t(c)] = {c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z};
+        add(vehicle, ObjectShadowMap::texel_bound({box}, ObjectShadowMap::kVehicleSize));
     }
-    reach.rects = disjoint_cover(reach.rects);
+    // Within those rectangles, with the ray caster's depth at hand, only the
+    // pixels whose points lie under a caster from the sun: the shadows'
+    // pixels and a thin margin, where the rectangles (a house's reaches
+    // down to the lowest sample of the blocks under it) held hundreds of
+    // thousands of pixels that no shadow reaches.
+    SnapGrid grid = snap_;
+    grid.bounds = &snap_bounds_;
+    reach.rects = depth ? shadow_pixels(*depth, camera, grid, sun, casters, rects) : disjoint_cover(rects);
     for (const PixelRect& r : reach.rects) reach.rect = bounding_union(reach.rect, r);
 }
 
@@ -193,7 +214,7 @@ float Compositor::floor_under(const WorldBox& box) const {
 PixelRect Compositor::depth_rect(const Camera& camera, const Environment& environment,
                                  const CompositeOptions& options) const {
     ShadowReach reach;
-    object_shadow_reach(camera, environment, options, reach);
+    object_shadow_reach(camera, environment, options, nullptr, reach);
     return depth_rect(camera, options, reach.rect);
 }
 
@@ -236,7 +257,11 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
         // The shadows' reach, worked out once for the frame: for its depth
         // load and its pass.
         const ShadowReach& reach = out ? drawn_reach_ : staged_reach_[std::size_t(slot)];
-        if (out && options.objects) object_shadow_reach(camera, environment, options, drawn_reach_);
+        if (out && options.objects) {
+            const auto t0 = std::chrono::steady_clock::now();
+            object_shadow_reach(camera, environment, options, out->depth, drawn_reach_);
+            timer.cpu_step_since("shadow_reach", t0);
+        }
         draw_images(out, slot, camera, reach, *into, timer, options);
         if (options.objects && (object_shadow_.active() || vehicle_shadow_.active()) && !reach.rects.empty()) {
             timer.begin_gl("object_shadows");

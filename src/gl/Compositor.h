@@ -32,7 +32,9 @@
 // objects cast theirs onto the terrain and each other through a shadow map
 // from the sun (ObjectShadowMap, rendered when the sun moves), read in
 // shade() and, on the ray casters' images, by ShadowScreenPass
-// ("object_shadows"). The vehicle casts its shadow the same way through a
+// ("object_shadows") over the pixels core/ShadowPixels.h finds on the CPU
+// from the image's depth ("shadow_reach" when draw() works it out; stage()
+// does it on the staging thread, untimed). The vehicle casts its shadow the same way through a
 // second map fitted to it alone, rendered whenever it moved.
 //
 // Fog used by every program (the ray caster matches it, raycast/Atmosphere.h):
@@ -47,6 +49,7 @@
 // CMSC 23700 hovercraft project sec. 3-4 (vehicle, sun, fog, sky).
 #include "core/Camera.h"
 #include "core/DataSet.h"
+#include "core/HeightBounds.h"
 #include "core/SharedSunShadow.h"
 #include "gl/BlockTerrain.h"
 #include "gl/FlightVehicle.h"
@@ -146,15 +149,17 @@ private:
     // Where the objects' shadow pass darkens a ray-cast image, worked out
     // once per frame (by stage() for its slot, or by draw()).
     struct ShadowReach {
-        std::vector<PixelRect> rects; // each caster's reach on screen, as disjoint rectangles; none: no pass
+        std::vector<PixelRect> rects; // the pixels the pass covers, as disjoint rectangles; none: no pass
         PixelRect rect;               // their bounding rectangle
     };
     // Loads the images (staged now from `out` when given, else from `slot`) into `into`.
     void draw_images(const MethodOutput* out, int slot, const Camera& camera, const ShadowReach& reach,
                      RenderTarget& into, StepTimer& timer, const CompositeOptions& options);
-    // Fills `reach` for a frame (nothing when the pass does not run).
+    // Fills `reach` for a frame (nothing when the pass does not run): with
+    // the ray caster's `depth`, the pixels whose points may lie in a shadow
+    // (core/ShadowPixels.h); without, each caster's screen rectangle.
     void object_shadow_reach(const Camera& camera, const Environment& environment, const CompositeOptions& options,
-                             ShadowReach& reach) const;
+                             const DepthImage* depth, ShadowReach& reach) const;
     PixelRect depth_rect(const Camera& camera, const CompositeOptions& options, const PixelRect& shadow_rect) const;
     // A height below every terrain sample under `box`'s footprint (from the
     // terrain's per-block minima), at least the terrain's lowest.
@@ -167,6 +172,8 @@ private:
     std::vector<float> block_min_; // the lowest sample of each block, row-major
     float terrain_min_ = 0;        // the lowest of block_min_: the terrain's lowest sample
     float object_texel_ = 0;       // ObjectShadowMap::texel_bound of the objects' map
+    SnapGrid snap_;                // the samples ShadowScreenPass snaps to (ShadowCeilingTexture::grid)
+    HeightBounds snap_bounds_;     // their heights' bounds (snap_.bounds when shadow_pixels is called)
     FrameUniforms frame_;
     SharedSunShadow* shared_shadow_ = nullptr; // share_sun_shadow()
     ShadowCeiling shadow_;                     // without shared_shadow_

@@ -118,7 +118,8 @@ struct PieceStart {
 
 PieceStart begin_piece(const ObjectGeometry& g) { return {g.triangles.positions.size(), g.line_points.size()}; }
 
-void end_piece(ObjectGeometry& g, PieceStart from) {
+// `box_caster`: the piece's bounds are one of g.casters too.
+void end_piece(ObjectGeometry& g, PieceStart from, bool box_caster = true) {
     WorldBox b{glm::vec3(HUGE_VALF), glm::vec3(-HUGE_VALF)};
     auto grow = [&](const std::vector<glm::vec3>& points, std::size_t first) {
         for (std::size_t i = first; i < points.size(); ++i) {
@@ -128,7 +129,11 @@ void end_piece(ObjectGeometry& g, PieceStart from) {
     };
     grow(g.triangles.positions, from.triangles);
     grow(g.line_points, from.lines);
-    if (b.lo.x <= b.hi.x) g.bounds.push_back(b);
+    if (!(b.lo.x <= b.hi.x)) return;
+    g.bounds.push_back(b);
+    if (!box_caster) return;
+    std::vector<glm::vec3>& corners = g.casters.emplace_back();
+    for (int c = 0; c < 8; ++c) corners.emplace_back(c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z);
 }
 
 } // namespace
@@ -193,8 +198,13 @@ ObjectGeometry build_object_geometry(const Scene& scene, const Terrain& t) {
                 const auto pts = catenary_points(towers[k](side, line.height, 0), towers[k + 1](side, line.height, 0),
                                                  line.sag, kCableSegments);
                 for (std::size_t i = 0; i + 1 < pts.size(); ++i) add_line(g, pts[i], pts[i + 1], line.color);
+                for (std::size_t i = 0; i + 1 < pts.size(); i += kCasterSegments) {
+                    std::vector<glm::vec3>& run = g.casters.emplace_back();
+                    for (std::size_t j = i; j <= std::min(i + kCasterSegments, pts.size() - 1); ++j)
+                        run.emplace_back(pts[j]);
+                }
             }
-            end_piece(g, piece);
+            end_piece(g, piece, false);
         }
     }
     return g;

@@ -36,10 +36,18 @@ struct ObjectGeometry {
     // World bounds of each object, each tower of a line and each span of its
     // cables: every vertex above lies in one of them (screen_rect).
     std::vector<WorldBox> bounds;
+    // Point sets whose convex hulls hold every vertex above, finer than
+    // `bounds` for the objects' shadows (core/ShadowPixels.h): each object's
+    // and tower's bounds' corners, and each cable's runs of
+    // kCasterSegments pieces (a span's box holds a slab of air the thin
+    // cables' shadows hardly touch).
+    std::vector<std::vector<glm::vec3>> casters;
 };
 
 // Number of straight pieces per cable span.
 inline constexpr int kCableSegments = 32;
+// Cable pieces per caster: a run of them bends less than a metre for the sags of real lines.
+inline constexpr int kCasterSegments = 8;
 
 // Half-length of a tower's cross-arm for a tower of `height`.
 inline double tower_arm(double height) { return 0.22 * height; }

@@ -10,6 +10,7 @@ void ObjectRenderer::set_scene(const Scene& scene, const Terrain& terrain) {
     solids_.upload(g.triangles);
     lines_.upload(g.line_points, g.line_colors);
     bounds_ = g.bounds;
+    casters_ = g.casters;
 }
 
 long long ObjectRenderer::draw() const {

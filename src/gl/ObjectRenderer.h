@@ -25,11 +25,14 @@ public:
     // bounds): where a composite needs the ray caster's depth.
     PixelRect screen_rect(const Camera& camera) const { return overflight::screen_rect(bounds_, camera); }
     const std::vector<WorldBox>& bounds() const { return bounds_; }
+    // ObjectGeometry::casters: what casts the objects' shadows, finer than bounds().
+    const std::vector<std::vector<glm::vec3>>& casters() const { return casters_; }
 
 private:
     StreamedMesh solids_;
     LineBatch lines_;
     std::vector<WorldBox> bounds_;
+    std::vector<std::vector<glm::vec3>> casters_;
 };
 
 } // namespace overflight::gl

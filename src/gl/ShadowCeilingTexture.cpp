@@ -9,10 +9,25 @@
 
 namespace overflight::gl {
 
-void ShadowCeilingTexture::upload(const ShadowCeiling& c, const Terrain& t) {
+namespace {
+
+int stride(int rows, int cols) {
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    const int k = std::max({1, (c.cols + max_size - 1) / max_size, (c.rows + max_size - 1) / max_size});
+    return std::max({1, (cols + max_size - 1) / max_size, (rows + max_size - 1) / max_size});
+}
+
+float texels_per_unit(const Terrain& t, int k) { return 1.0f / (t.h_scale() * float(k)); }
+
+} // namespace
+
+SnapGrid ShadowCeilingTexture::grid(const Terrain& t) {
+    const int k = stride(t.rows(), t.cols());
+    return {&t, k, texels_per_unit(t, k)};
+}
+
+void ShadowCeilingTexture::upload(const ShadowCeiling& c, const Terrain& t) {
+    const int k = stride(c.rows, c.cols);
     const int w = (c.cols - 1) / k + 1, h = (c.rows - 1) / k + 1;
     std::vector<glm::vec2> texels(std::size_t(w) * std::size_t(h));
     tbb::parallel_for(0, h, [&](int r) {
@@ -33,7 +48,7 @@ void ShadowCeilingTexture::upload(const ShadowCeiling& c, const Terrain& t) {
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTextureSubImage2D(texture_.get(), 0, 0, 0, w, h, GL_RG, GL_FLOAT, texels.data());
-    uniform_ = glm::vec4(1.0f, 1.0f / (t.h_scale() * float(k)), 0.0f, 0.0f);
+    uniform_ = glm::vec4(1.0f, texels_per_unit(t, k), 0.0f, 0.0f);
     bind();
 }
 

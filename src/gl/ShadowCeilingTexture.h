@@ -7,6 +7,7 @@
 // ray casters' samples. A grid larger than the GL's largest texture is
 // uploaded every k-th sample.
 #include "core/HorizonSweep.h"
+#include "core/ShadowPixels.h"
 #include "gl/GlProgram.h"
 
 #include <glm/vec4.hpp>
@@ -19,6 +20,9 @@ public:
 
     // Uploads `ceiling` of `terrain` (texels: ceiling - height, height) and binds it to kUnit.
     void upload(const ShadowCeiling& ceiling, const Terrain& terrain);
+    // The samples of `terrain` its uploads hold (every k-th), as the frame
+    // block's `shadow.y` scales world positions to them. Needs a GL context.
+    static SnapGrid grid(const Terrain& terrain);
     // Binds the last upload to kUnit.
     void bind() const;
     // The `shadow` vector of the frame block for the last upload.

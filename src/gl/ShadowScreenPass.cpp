@@ -7,17 +7,24 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <vector>
 
 namespace overflight::gl {
 
 namespace {
 
+// One instance per rectangle: GL window columns x0..x1, rows y0..y1 (whole
+// pixels, so that the two triangles cover exactly its pixel centres).
 const char* const kPassVs = R"(
+layout(location = 0) in ivec4 rect;
 void main() {
-    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+    const ivec2 corner[6] = ivec2[6](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 0), ivec2(1, 1), ivec2(0, 1));
+    ivec2 c = corner[gl_VertexID];
+    vec2 p = vec2(c.x == 0 ? rect.x : rect.z, c.y == 0 ? rect.y : rect.w);
+    gl_Position = vec4(p / image.xy * 2.0 - 1.0, 0.0, 1.0);
 }
 )";
 
@@ -71,11 +78,28 @@ void main() {
 } // namespace
 
 void ShadowScreenPass::draw(const RenderTarget& target, const Camera& camera, std::span<const PixelRect> rects) {
-    if (rects.empty()) return;
+    std::vector<glm::ivec4> boxes;
+    boxes.reserve(rects.size());
+    for (const PixelRect& r : rects)
+        if (!r.empty()) boxes.emplace_back(r.col0, camera.height - r.row1, r.col1, camera.height - r.row0);
+    if (boxes.empty()) return;
     if (!program_) {
         program_ = make_program("object-shadow-pass", kPassVs, kPassFs);
         vao_ = make_vertex_array();
+        glEnableVertexArrayAttrib(vao_.get(), 0);
+        glVertexArrayAttribIFormat(vao_.get(), 0, 4, GL_INT, 0);
+        glVertexArrayAttribBinding(vao_.get(), 0, 0);
+        glVertexArrayBindingDivisor(vao_.get(), 0, 1);
     }
+    // A buffer large enough for this frame's rectangles (grown by doubling).
+    const GLsizeiptr bytes = GLsizeiptr(boxes.size() * sizeof(glm::ivec4));
+    if (bytes > capacity_) {
+        capacity_ = std::max<GLsizeiptr>(bytes, 2 * capacity_);
+        rects_ = make_buffer();
+        glNamedBufferData(rects_.get(), capacity_, nullptr, GL_STREAM_DRAW);
+        glVertexArrayVertexBuffer(vao_.get(), 0, rects_.get(), 0, sizeof(glm::ivec4));
+    }
+    glNamedBufferSubData(rects_.get(), 0, bytes, boxes.data());
     // The depth is sampled, so it must not be attached where the pass draws.
     target.bind_color_only();
 
@@ -87,17 +111,11 @@ void ShadowScreenPass::draw(const RenderTarget& target, const Camera& camera, st
     glBindTextureUnit(kUnit, target.depth_texture());
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
-    glEnable(GL_SCISSOR_TEST);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_SRC1_COLOR);
     glBindVertexArray(vao_.get());
-    for (const PixelRect& rect : rects) {
-        if (rect.empty()) continue;
-        glScissor(rect.col0, camera.height - rect.row1, rect.col1 - rect.col0, rect.row1 - rect.row0);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(boxes.size()));
     glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
     glDepthMask(GL_TRUE);
     glEnable(GL_DEPTH_TEST);
 }

@@ -34,12 +34,15 @@ public:
     // attachment, which must hold it within the rects (the objects not drawn
     // yet). Binds the target's color alone. Needs the frame block, the
     // terrain's shadow ceiling texture and an active ObjectShadowMap bound.
-    // One scissored draw per rectangle: llvmpipe's cost is per pixel covered.
+    // One instanced draw of a quad per rectangle: llvmpipe's cost is per
+    // pixel covered.
     void draw(const RenderTarget& target, const Camera& camera, std::span<const PixelRect> rects);
 
 private:
     Program program_;
     VertexArray vao_;
+    Buffer rects_; // the rectangles, one ivec4 per instance
+    GLsizeiptr capacity_ = 0;
 };
 
 } // namespace overflight::gl
