@@ -165,8 +165,8 @@ public:
         return out;
     }
 
-    // The tables, for loops that look them up themselves. column, haze and
-    // opacity are followed by kPad copies of their last entry, so that a
+    // The tables, for loops that look them up themselves. Each is followed
+    // by kPad copies of its last entry, so that a
     // vectorised loop may load the kPad + 1 entries from any valid index.
     const float* column() const { return column_.data(); }
     const std::uint32_t* transmit() const { return transmit_.data(); }
