@@ -89,27 +89,23 @@ void AerialTables::build(const AerialFrame& f, float dy_lo, float dy_hi) {
     // the coefficients alone, so a flight rebuilds only the small tables.
     const double least = std::min({f.beta.x, f.beta.y, f.beta.z});
     const double x_step = (least > 0.0 ? std::log(1024.0) / least : 1.0) / kColumns;
-    column_.resize(std::size_t(kHeights + kPad));
+    column_.resize(kHeights);
     for (int j = 0; j < kHeights; ++j)
         column_[std::size_t(j)] =
             float(f.eye_density * height_factor((dy_lo + dy_step * j) / f.scale_height) / x_step);
-    std::fill(column_.begin() + kHeights, column_.end(), column_[std::size_t(kHeights - 1)]);
     if (transmit_.empty() || f.beta != built_.beta) {
-        transmit_.resize(std::size_t(kColumns + 1 + kPad));
+        transmit_.resize(std::size_t(kColumns) + 1);
         for (int i = 0; i <= kColumns; ++i) transmit_[std::size_t(i)] = pack_weights(glm::exp(-f.beta * (x_step * i)));
-        std::fill(transmit_.begin() + kColumns + 1, transmit_.end(), transmit_[std::size_t(kColumns)]);
     }
     if (haze_.empty() || f.sun != built_.sun || f.rayleigh_light != built_.rayleigh_light ||
         f.haze_light != built_.haze_light || f.g != built_.g) {
-        haze_.resize(std::size_t(kPhases + kPad));
+        haze_.resize(kPhases);
         for (int p = 0; p < kPhases; ++p) haze_[std::size_t(p)] = pack_color(haze_color(f, 2.0 * p / (kPhases - 1) - 1.0));
-        std::fill(haze_.begin() + kPhases, haze_.end(), haze_[std::size_t(kPhases - 1)]);
     }
     if (opacity_.empty() || f.beta != built_.beta || f.eye_density != built_.eye_density ||
         f.scale_height != built_.scale_height) {
-        opacity_.resize(std::size_t(kSkies + kPad));
+        opacity_.resize(kSkies);
         for (int q = 0; q < kSkies; ++q) opacity_[std::size_t(q)] = pack_weights(sky_opacity(f, double(q) / (kSkies - 1)));
-        std::fill(opacity_.begin() + kSkies, opacity_.end(), opacity_[std::size_t(kSkies - 1)]);
     }
     built_ = f;
 }

@@ -165,9 +165,6 @@ public:
         return out;
     }
 
-    // The tables, for loops that look them up themselves. Each is followed
-    // by kPad copies of its last entry, so that a
-    // vectorised loop may load the kPad + 1 entries from any valid index.
     const float* column() const { return column_.data(); }
     const std::uint32_t* transmit() const { return transmit_.data(); }
     const std::uint32_t* haze() const { return haze_.data(); }
@@ -176,7 +173,6 @@ public:
     float inv_dy_step() const { return inv_dy_step_; }
 
     static constexpr int kHeights = 256, kColumns = 4096, kPhases = 1024, kSkies = 1024;
-    static constexpr int kPad = 7;
     static constexpr float kPhaseScale = 0.5f * float(kPhases - 1);
 
 private:

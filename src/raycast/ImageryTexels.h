@@ -15,7 +15,6 @@
 // color (core/SunLight.h, LightOutput::Light: 128 is a light of 1), and the
 // albedo multiplies it here, before fog or aerial perspective: the sun, the
 // shadows and the atmosphere stay as they are without imagery.
-#include "core/HugePageAllocator.h"
 #include "core/ImageryPyramid.h"
 
 #include <algorithm>
@@ -99,7 +98,7 @@ public:
 private:
     const ImageryPyramid* pyramid_ = nullptr;
     std::vector<Level> levels_;
-    std::vector<Rgba8, HugePageAllocator<Rgba8>> texels_; // read by gathers all over a level
+    std::vector<Rgba8> texels_;
     LevelLanes lanes_;
     bool lane_tables_ = false;
     float x0_ = 0, z0_ = 0;

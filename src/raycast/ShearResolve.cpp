@@ -242,60 +242,35 @@ __attribute__((target("avx2"))) inline __m256i air_blend(__m256i surface, __m256
     return _mm256_or_si256(out_rb, _mm256_slli_epi32(out_g, 8));
 }
 
-// Entries of a 32-bit table at 8 lane indices: where the lanes' indices lie
-// within 8 entries of their least, as along most of an image row (the haze
-// and the air column change by a few entries across 8 adjacent pixels), one
-// load of those 8 entries and a permute; else a gather. The table must be
-// readable 7 entries past any index (AerialTables pads its tables).
-__attribute__((target("avx2"))) inline __m256i window_lookup(const std::uint32_t* table, __m256i idx) {
-    __m256i lo = _mm256_min_epi32(idx, _mm256_permute2x128_si256(idx, idx, 1));
-    lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0x4E));
-    lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0xB1));
-    const __m256i off = _mm256_sub_epi32(idx, lo);
-    if (_mm256_movemask_epi8(_mm256_cmpgt_epi32(off, _mm256_set1_epi32(7))) != 0)
-        return _mm256_i32gather_epi32(reinterpret_cast<const int*>(table), idx, 4);
-    const __m256i window = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(table + _mm256_cvtsi256_si32(lo)));
-    return _mm256_permutevar8x32_epi32(window, off);
-}
-__attribute__((target("avx2"))) inline __m256 window_lookup(const float* table, __m256i idx) {
-    return _mm256_castsi256_ps(window_lookup(reinterpret_cast<const std::uint32_t*>(table), idx));
-}
-
 // The pixels of 8 lanes through the air (t.air): AerialTables' lookups and
-// blends lane by lane, as FogLanes. The tables' addresses and constants are
-// copied here once per block (a kernel takes its lanes by value), so that
-// the image stores, which may alias anything, do not reload them per pixel.
+// blends lane by lane, as FogLanes.
 struct AirLanes {
-    const std::uint32_t* haze;
-    const float* column;
-    const std::uint32_t* transmit;
-    const std::uint32_t* opacity;
-    float dy_lo, inv_dy_step, sun_y;
-
-    explicit AirLanes(const ShearResolveTables& t)
-        : haze(t.air->haze()), column(t.air->column()), transmit(t.air->transmit()), opacity(t.air->opacity()),
-          dy_lo(t.air->dy_lo()), inv_dy_step(t.air->inv_dy_step()), sun_y(t.sun_y) {}
+    const ShearResolveTables& t;
 
     template <bool kTerrain, bool kSky>
     __attribute__((target("avx2"))) __m256i shade(const ShearBlock& blk, int i, __m256 m, __m256 len, __m256 d,
                                                   __m256i terrain, __m256i c) const {
+        const AerialTables& air = *t.air;
         const __m256 half = _mm256_set1_ps(0.5f);
         const __m256 cos_sun = _mm256_div_ps(
-            _mm256_add_ps(_mm256_loadu_ps(blk.sun_dot + i), _mm256_mul_ps(m, _mm256_set1_ps(sun_y))), len);
+            _mm256_add_ps(_mm256_loadu_ps(blk.sun_dot + i), _mm256_mul_ps(m, _mm256_set1_ps(t.sun_y))), len);
         const __m256i p = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(cos_sun, _mm256_set1_ps(1.0f)),
                                                             _mm256_set1_ps(AerialTables::kPhaseScale)),
                                               half),
                                 float(AerialTables::kPhases - 1));
-        const __m256i h = window_lookup(haze, p);
+        const __m256i h = _mm256_i32gather_epi32(reinterpret_cast<const int*>(air.haze()), p, 4);
         __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
         if constexpr (kTerrain) {
             const __m256 dy = _mm256_mul_ps(d, m);
-            const __m256i hj = clamp_lanes(
-                _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, _mm256_set1_ps(dy_lo)), _mm256_set1_ps(inv_dy_step)), half),
-                float(AerialTables::kHeights - 1));
-            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), window_lookup(column, hj)), half);
-            const __m256i w = window_lookup(
-                transmit, _mm256_cvttps_epi32(_mm256_min_ps(x, _mm256_set1_ps(float(AerialTables::kColumns)))));
+            const __m256i hj = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, _mm256_set1_ps(air.dy_lo())),
+                                                                 _mm256_set1_ps(air.inv_dy_step())),
+                                                   half),
+                                     float(AerialTables::kHeights - 1));
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_i32gather_ps(air.column(), hj, 4)),
+                                           half);
+            const __m256i w = _mm256_i32gather_epi32(
+                reinterpret_cast<const int*>(air.transmit()),
+                _mm256_cvttps_epi32(_mm256_min_ps(x, _mm256_set1_ps(float(AerialTables::kColumns)))), 4);
             lit = air_blend(c, w, h);
         }
         if constexpr (kSky) {
@@ -303,7 +278,8 @@ struct AirLanes {
                                                                 _mm256_set1_ps(float(AerialTables::kSkies - 1))),
                                                   half),
                                     float(AerialTables::kSkies - 1));
-            sky = air_blend(_mm256_setzero_si256(), window_lookup(opacity, q), h, false);
+            sky = air_blend(_mm256_setzero_si256(),
+                            _mm256_i32gather_epi32(reinterpret_cast<const int*>(air.opacity()), q, 4), h, false);
         }
         return _mm256_blendv_epi8(sky, lit, terrain);
     }
@@ -316,7 +292,7 @@ struct AirLanes {
 // view depth is computed rather than gathered. A full block's pixels go to
 // the images straight from the registers.
 template <bool kTerrain, bool kSky, bool kEven, class Lanes>
-__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const Lanes lanes,
+__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const Lanes& lanes,
                                                        const ShearBlock& blk, int H, int j0, int j1,
                                                        const std::uint32_t* color, const std::uint32_t* slice,
                                                        Rgb8* out_c, float* out_d, std::size_t W) {
@@ -359,7 +335,7 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
 // The block's rows with the AVX2 kernel: all terrain below every column's
 // horizon (jmin), both up to the highest (jmax), all sky above.
 template <class Lanes>
-void resolve_block_avx2(const ShearResolveTables& t, const Lanes lanes, const ShearBlock& blk, int H, int jmin,
+void resolve_block_avx2(const ShearResolveTables& t, const Lanes& lanes, const ShearBlock& blk, int H, int jmin,
                         int jmax, const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
                         std::size_t W) {
     if (t.d_step > 0.0f) {

@@ -245,12 +245,11 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
     }
 }
 
-// As an image's blocks are: neighbouring lanes see nearly the same sun
-// angle, ray length and slice, so the AVX2 kernel's table lookups take 8
-// adjacent entries at once (and gather where they spread, at the steep rows
-// and on the slices' jumps); the aerial perspective's bits stay the portable
-// kernel's, up to the tables' last entries (rows up to the zenith, columns
-// of air past the last).
+// As an image's blocks are (the random lanes above are not): neighbouring
+// lanes see nearly the same sun angle, ray length and slice, so their table
+// entries are adjacent, with jumps on some rows; the aerial perspective's
+// bits stay the portable kernel's, up to the tables' last entries (rows up
+// to the zenith, columns of air past the last).
 TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     if (!resolve_kernel_available(ResolveKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
     const int H = 400, S = 3000, W = kShearBlock;
