@@ -244,3 +244,57 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
         }
     }
 }
+
+// As an image's blocks are (the random lanes above are not): neighbouring
+// lanes see nearly the same sun angle, ray length and slice, so their table
+// entries are adjacent, with jumps on some rows; the aerial perspective's
+// bits stay the portable kernel's, up to the tables' last entries (rows up
+// to the zenith, columns of air past the last).
+TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
+    if (!resolve_kernel_available(ResolveKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
+    const int H = 400, S = 3000, W = kShearBlock;
+    std::vector<float> rows(H), depth(S), d(S);
+    for (int j = 0; j < H; ++j) rows[std::size_t(j)] = -0.6f + 40.0f * float(j * j) / float(H * H);
+    for (int k = 0; k < S; ++k) {
+        d[std::size_t(k)] = 1.0f + 8.0f * float(k);
+        depth[std::size_t(k)] = 1.0f - 1.0f / d[std::size_t(k)];
+    }
+    Environment env;
+    env.atmosphere = true;
+    env.sun_dir = {0.6f, 0.1f, 0.8f};
+    FogTable fog;
+    fog.build(0.0f, 1.0f);
+    SkyTable sky;
+    sky.build(env);
+    AerialTables air;
+    air.build(aerial_frame(env, 50.0), -300.0f, 400.0f);
+    ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0u, sky.entries()};
+    t.air = &air;
+    t.sun_y = 0.1f;
+    std::vector<int> jend(kShearBlock);
+    std::vector<float> len2(kShearBlock);
+    for (int i = 0; i < kShearBlock; ++i) {
+        jend[std::size_t(i)] = 250 + i;
+        const float a = -0.3f + 0.002f * float(i);
+        len2[std::size_t(i)] = 1.0f + a * a;
+    }
+    ShearBlock blk = block(kShearBlock, jend, len2);
+    for (int i = 0; i < kShearBlock; ++i) blk.sun_dot[i] = 0.8f - 0.6f * (-0.3f + 0.002f * float(i));
+    Scratch s(H);
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < kShearBlock; ++i)
+            s.set(j, i, std::uint32_t(0x406080 + 0x010203 * i),
+                  std::uint32_t(std::min(S - 1, (S - 1) - 12 * j + i / 5 + (j % 7 == 0 ? 40 * (i % 3) : 0))));
+    ColorImage c1, c2;
+    DepthImage z1, z2;
+    c1.resize(W, H);
+    c2.resize(W, H);
+    z1.resize(W, H);
+    z2.resize(W, H);
+    resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c1.pixels.data(), z1.pixels.data(), std::size_t(W),
+                        ResolveKernel::Portable);
+    resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c2.pixels.data(), z2.pixels.data(), std::size_t(W),
+                        ResolveKernel::Avx2);
+    EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)));
+    EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float)));
+}
