@@ -468,14 +468,25 @@ void main() {
 }
 `;
 
-// The composite to the canvas, rows turned over (texture row 0 is the image's top).
+// The composite to the canvas, rows turned over (texture row 0 is the
+// image's top) by the full-screen triangle's texture coordinates: the
+// interpolated coordinate lands mid-texel at each pixel centre, so the
+// nearest texel is exactly the pixel's. SwiftShader fills 1280x720 with this
+// plain texture() in half the time of a texelFetch at integer
+// coordinates computed per fragment (measured in headless Chromium).
+const kPresentVs = `
+out vec2 uv;
+void main() {
+    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0;
+    uv = vec2(0.5 * p.x + 0.5, 0.5 - 0.5 * p.y);
+    gl_Position = vec4(p, 1.0, 1.0);
+}
+`;
 const kPresentFs = `
 uniform highp sampler2D image;
+in vec2 uv;
 out vec4 frag;
-void main() {
-    ivec2 size = textureSize(image, 0);
-    frag = vec4(texelFetch(image, ivec2(gl_FragCoord.x, size.y - 1 - int(gl_FragCoord.y)), 0).rgb, 1.0);
-}
+void main() { frag = texture(image, uv); }
 `;
 
 // A triangle mesh (or line list) in GL buffers, attributes as kLitVs reads them.
@@ -561,7 +572,7 @@ class Renderer {
         this.line = shaded(shade + kLitVs, shade + kLineFs);
         this.sky = shaded(kSkyVs, shade + kSkyFs);
         this.terrain = shaded(shade + kTerrainVs, kColorFs);
-        this.present = compile(gl, kSkyVs, kPresentFs);
+        this.present = compile(gl, kPresentVs, kPresentFs);
         this.solids = new GlMesh(gl, objects.positions, objects.normals, objects.colors, objects.indices);
         this.lines = new GlMesh(gl, objects.linePoints, null, objects.lineColors, null);
         this.vehicleProgram = shaded(shade + kVehicleVs, shade + kLitFs);
