@@ -329,13 +329,13 @@ TEST(TileWindows, LargeRasterIsTiledWithinTheMemoryBound) {
 }
 #endif
 
-// A 70000 x 300 raster pads to 131073^2, beyond the 65537 of a terrain held
-// at once: its directory opens through the overview (at most 2049 per side)
-// and the quadtree over the tiles draws it.
+// A 70000 x 200 raster (one row of tiles) pads to 131073^2, beyond the
+// 65537 of a terrain held at once: its directory opens through the overview
+// (at most 2049 per side) and the quadtree over the tiles draws it.
 TEST(TileWindows, DirectoryBeyondOneTerrainOpensLazily) {
     test::ScratchDir scratch;
     const std::string dem = scratch / "long.tif", dir = scratch / "t";
-    write_dem(dem, 300, 70000, false, 0);
+    write_dem(dem, 200, 70000, false, 0);
     const auto r = test::run_overflight("tile '" + dem + "' -o '" + dir + "' --tile-size 257");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const TileIndex ix = read_tile_index(dir);
