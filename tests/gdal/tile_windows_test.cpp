@@ -319,8 +319,12 @@ TEST(TileWindows, LargeRasterIsTiledWithinTheMemoryBound) {
     for (int i = 0; i < 256; ++i)
         for (int j = 0; j < 256; ++j) differing += block.sample_height(i, j) != float(100 + i + j);
     EXPECT_EQ(differing, 0);
-    // Tile r0_c387 (columns 99072..99328) holds the void's last 28 columns.
+    // Tile r0_c387 (columns 99072..99328) holds the void's last 28 columns,
+    // filled from both sides: on row 0 between 355 m (column 98999) and
+    // 100 m (column 99100), not the lowest elevation.
     const Terrain filled = read_tile(dir, ix, 0, 387, false, 0).samples;
+    EXPECT_GT(filled.sample_height(0, 0), 100.0f);
+    EXPECT_LT(filled.sample_height(0, 0), 355.0f);
     for (int i = 0; i < 256; i += 15)
         for (int j = 0; j < 28; ++j) {
             EXPECT_GE(filled.sample_height(i, j), 100.0f) << i << ", " << j;
