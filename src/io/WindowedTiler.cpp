@@ -36,6 +36,7 @@
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -711,6 +712,11 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         rec.overview_rgb.assign(3 * m, 0);
     }
 
+    // The files in the folder before this run, listed once: a tile without
+    // data removes what an earlier run may have left only where there is
+    // something (a 131073^2 grid has 262144 tiles, most of them empty).
+    std::unordered_set<std::string> before;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir)) before.insert(e.path().filename().string());
     tbb::enumerable_thread_specific<Reader> readers;
     std::atomic<int> written{0}, skipped{0}, empty{0};
     std::atomic<bool> stop{false};
@@ -723,8 +729,10 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
         if (!g.present(r, c)) {
             ++empty;
             for (const TileFile file :
-                 {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2, TileFile::Imagery})
-                fs::remove(tile_path(dir, r, c, file), ec);
+                 {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2, TileFile::Imagery}) {
+                const fs::path path = tile_path(dir, r, c, file);
+                if (before.count(path.filename().string())) fs::remove(path, ec);
+            }
             return;
         }
         Reader& rd = readers.local();
