@@ -10,6 +10,11 @@
 // rewritten while a transfer from it may still be in flight, and nothing is
 // mapped, orphaned or reallocated per frame.
 //
+// The color is staged as 4 bytes per pixel in the order GL stores the
+// target's RGBA8 texture (GL_TEXTURE_IMAGE_FORMAT: RGBA or BGRA), alpha 255,
+// so that the load is a copy: a 3-byte RGB load made GL widen every pixel on
+// the GL thread, where staging widens it beside the cast.
+//
 // What a slot keeps of the depth: only the rows of a rectangle (where objects
 // can be depth-tested, Szenberg et al. 1997 sec. 5 and Table 1 "Z-buffer
 // load") from its topmost row holding terrain down; the rows above it are sky
@@ -44,6 +49,8 @@ public:
     void reserve(int width, int height);
     int width() const { return width_; }
     int height() const { return height_; }
+    // GL_RGBA or GL_BGRA: the order of the staged color's bytes (reserve()).
+    GLenum color_format() const { return color_format_; }
 
     // GL thread: waits until GL has read the slot's last load, so that it can
     // be staged again.
@@ -57,7 +64,7 @@ public:
     void stage_depth(int slot, const DepthImage& depth, const PixelRect& rect);
 
     // GL thread: loads what the slot holds into `target` (offscreen, of the
-    // reserved size): the color, and the depth of the staged rectangle (the
+    // reserved size): the color (as color_format()), and the depth of the staged rectangle (the
     // rest of the depth attachment is left as it was). Each fences the slot.
     void load_color(int slot, RenderTarget& target);
     void load_depth(int slot, RenderTarget& target);
@@ -74,6 +81,7 @@ private:
     void fence(Slot& s);
 
     int width_ = 0, height_ = 0;
+    GLenum color_format_ = GL_RGBA;
     std::size_t color_bytes_ = 0;
     std::array<Slot, kSlots> slots_;
 };
