@@ -24,11 +24,11 @@ void copy_flipped(void* dst, const void* src, int rows, std::size_t row_bytes, s
         std::memcpy(d + std::size_t(rows - 1 - r) * row_bytes, s + std::size_t(r) * src_stride, row_bytes);
 }
 
+static_assert(std::endian::native == std::endian::little, "pixels are composed as little-endian words");
+
 // Widens the RGB rows of `color` to 4-byte pixels (red at byte 0 or, with
 // kBgra, at byte 2; alpha 255) into packed rows of dst in reverse order, a
 // whole 32-bit word per pixel (a mapped buffer may be write-combined).
-static_assert(std::endian::native == std::endian::little, "pixels are composed as little-endian words");
-
 template <bool kBgra>
 void copy_flipped_wide(void* dst, const ColorImage& color) {
     const int w = color.width, h = color.height;

@@ -49,8 +49,6 @@ public:
     void reserve(int width, int height);
     int width() const { return width_; }
     int height() const { return height_; }
-    // GL_RGBA or GL_BGRA: the order of the staged color's bytes (reserve()).
-    GLenum color_format() const { return color_format_; }
 
     // GL thread: waits until GL has read the slot's last load, so that it can
     // be staged again.
@@ -64,7 +62,7 @@ public:
     void stage_depth(int slot, const DepthImage& depth, const PixelRect& rect);
 
     // GL thread: loads what the slot holds into `target` (offscreen, of the
-    // reserved size): the color (as color_format()), and the depth of the staged rectangle (the
+    // reserved size): the color, and the depth of the staged rectangle (the
     // rest of the depth attachment is left as it was). Each fences the slot.
     void load_color(int slot, RenderTarget& target);
     void load_depth(int slot, RenderTarget& target);
@@ -81,7 +79,7 @@ private:
     void fence(Slot& s);
 
     int width_ = 0, height_ = 0;
-    GLenum color_format_ = GL_RGBA;
+    GLenum color_format_ = GL_RGBA; // the staged color's byte order (reserve())
     std::size_t color_bytes_ = 0;
     std::array<Slot, kSlots> slots_;
 };
