@@ -236,12 +236,17 @@ CompositeCounts Compositor::compose(const MethodOutput* out, int slot, const Cam
     if (!images) {
         if (out->kind == MethodOutputKind::Resident) prepare(out->surface); // uploads are not part of a frame
     }
-    // An image composite is drawn offscreen: a window's is then blitted to it.
+    // An image composite is drawn offscreen: a window's is then blitted to
+    // it. Two targets in turn, so that loading frame N+1 does not wait for GL
+    // to finish drawing and blitting frame N from the same textures (a
+    // software GL such as llvmpipe rasterises frame N while N+1 is loaded).
     RenderTarget* into = &target;
     if (images && !target.offscreen()) {
-        if (!images_ || images_->width() != camera.width || images_->height() != camera.height)
-            images_ = std::make_unique<RenderTarget>(camera.width, camera.height);
-        into = images_.get();
+        std::unique_ptr<RenderTarget>& next = images_[next_image_];
+        next_image_ = (next_image_ + 1) % int(images_.size());
+        if (!next || next->width() != camera.width || next->height() != camera.height)
+            next = std::make_unique<RenderTarget>(camera.width, camera.height);
+        into = next.get();
     }
     if (out && out->kind == MethodOutputKind::Mesh && out->tile_imagery) {
         timer.begin_gl("imagery_tiles");

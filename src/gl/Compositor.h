@@ -14,9 +14,13 @@
 //             without a transfer. The loads go through the persistently
 //             mapped slots of an ImageStream, whose CPU copy (stage()) may run
 //             on another thread ahead of the GL thread (the `fly` window casts
-//             and stages frame N+1 while frame N is drawn). A window receives
-//             the finished composite's color by a blit ("blit"): no
-//             full-screen pass, no depth written. The ray cast paints its own sky.
+//             and stages frame N+1 while frame N is drawn); the color is
+//             staged in the texture's own byte order, so its load is a copy.
+//             A window receives the finished composite's color by a blit
+//             ("blit"): no full-screen pass, no depth written; its composites
+//             alternate between two offscreen targets, so loading frame N+1
+//             never waits for GL to finish drawing frame N. The ray cast
+//             paints its own sky.
 //   Mesh      depth cleared and the sky drawn ("sky"), the arrays streamed to
 //             GL ("upload") and drawn lit and fogged ("terrain").
 //   Resident  depth cleared, sky, the representation uploaded on first use
@@ -197,7 +201,8 @@ private:
     int next_slot_ = 0;
     std::array<ShadowReach, ImageStream::kSlots> staged_reach_; // stage()'s, per slot
     ShadowReach drawn_reach_;                                   // draw()'s
-    std::unique_ptr<RenderTarget> images_; // a window's Images composite, blitted to it
+    std::array<std::unique_ptr<RenderTarget>, 2> images_; // a window's Images composites, in turn, blitted to it
+    int next_image_ = 0;
 };
 
 } // namespace overflight::gl

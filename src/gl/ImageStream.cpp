@@ -6,6 +6,7 @@
 #include "gl/RenderTarget.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <cstring>
 
@@ -21,6 +22,26 @@ void copy_flipped(void* dst, const void* src, int rows, std::size_t row_bytes, s
     const auto* s = static_cast<const std::uint8_t*>(src);
     for (int r = 0; r < rows; ++r)
         std::memcpy(d + std::size_t(rows - 1 - r) * row_bytes, s + std::size_t(r) * src_stride, row_bytes);
+}
+
+static_assert(std::endian::native == std::endian::little, "pixels are composed as little-endian words");
+
+// Widens the RGB rows of `color` to 4-byte pixels (red at byte 0 or, with
+// kBgra, at byte 2; alpha 255) into packed rows of dst in reverse order, a
+// whole 32-bit word per pixel (a mapped buffer may be write-combined).
+template <bool kBgra>
+void copy_flipped_wide(void* dst, const ColorImage& color) {
+    const int w = color.width, h = color.height;
+    auto* d = static_cast<std::uint8_t*>(dst);
+    for (int row = 0; row < h; ++row) {
+        const Rgb8* s = color.pixels.data() + std::size_t(row) * std::size_t(w);
+        std::uint8_t* o = d + std::size_t(h - 1 - row) * std::size_t(w) * 4;
+        for (int c = 0; c < w; ++c) {
+            const std::uint32_t r = s[c].r, g = s[c].g, b = s[c].b;
+            const std::uint32_t word = (kBgra ? b | r << 16 : r | b << 16) | g << 8 | 0xff000000u;
+            std::memcpy(o + std::size_t(c) * 4, &word, 4); // little-endian: byte 0 first
+        }
+    }
 }
 
 // The first row of `rect` at or below which `depth` holds terrain (a value
@@ -63,9 +84,12 @@ void ImageStream::reserve(int width, int height) {
     release();
     width_ = width;
     height_ = height;
-    color_bytes_ = std::size_t(width) * std::size_t(height) * 3;
-    // The depth after the color, 4-aligned for its floats.
-    color_bytes_ = (color_bytes_ + 3) & ~std::size_t(3);
+    // The byte order GL keeps an RGBA8 texture in: loads in it are copies.
+    GLint order = GL_RGBA;
+    glGetInternalformativ(GL_TEXTURE_2D, GL_RGBA8, GL_TEXTURE_IMAGE_FORMAT, 1, &order);
+    color_format_ = order == GL_BGRA ? GL_BGRA : GL_RGBA;
+    // The depth after the color (4-aligned for its floats, as 4-byte pixels are).
+    color_bytes_ = std::size_t(width) * std::size_t(height) * 4;
     const std::size_t bytes = color_bytes_ + std::size_t(width) * std::size_t(height) * 4;
     const GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
     for (Slot& s : slots_) {
@@ -89,8 +113,8 @@ void ImageStream::stage_color(int slot, const ColorImage& color) {
     Slot& s = slots_.at(std::size_t(slot));
     if (color.width != width_ || color.height != height_ || !s.mapped)
         throw Error("opengl", "color image size does not match the image stream");
-    const std::size_t row = std::size_t(width_) * 3;
-    copy_flipped(s.mapped, color.pixels.data(), height_, row, row);
+    if (color_format_ == GL_BGRA) copy_flipped_wide<true>(s.mapped, color);
+    else copy_flipped_wide<false>(s.mapped, color);
 }
 
 void ImageStream::stage_depth(int slot, const DepthImage& depth, const PixelRect& rect) {
@@ -113,7 +137,7 @@ void ImageStream::stage_depth(int slot, const DepthImage& depth, const PixelRect
 
 void ImageStream::load_color(int slot, RenderTarget& target) {
     Slot& s = slots_.at(std::size_t(slot));
-    target.load_color(s.buffer.get(), 0);
+    target.load_color(s.buffer.get(), 0, color_format_);
     fence(s);
 }
 

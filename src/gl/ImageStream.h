@@ -10,6 +10,11 @@
 // rewritten while a transfer from it may still be in flight, and nothing is
 // mapped, orphaned or reallocated per frame.
 //
+// The color is staged as 4 bytes per pixel in the order GL stores the
+// target's RGBA8 texture (GL_TEXTURE_IMAGE_FORMAT: RGBA or BGRA), alpha 255,
+// so that the load is a copy: a 3-byte RGB load made GL widen every pixel on
+// the GL thread, where staging widens it beside the cast.
+//
 // What a slot keeps of the depth: only the rows of a rectangle (where objects
 // can be depth-tested, Szenberg et al. 1997 sec. 5 and Table 1 "Z-buffer
 // load") from its topmost row holding terrain down; the rows above it are sky
@@ -74,6 +79,7 @@ private:
     void fence(Slot& s);
 
     int width_ = 0, height_ = 0;
+    GLenum color_format_ = GL_RGBA; // the staged color's byte order (reserve())
     std::size_t color_bytes_ = 0;
     std::array<Slot, kSlots> slots_;
 };

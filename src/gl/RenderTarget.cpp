@@ -57,11 +57,11 @@ void RenderTarget::bind() const {
     glViewport(0, 0, width_, height_);
 }
 
-void RenderTarget::load_color(GLuint buffer, std::size_t offset) {
+void RenderTarget::load_color(GLuint buffer, std::size_t offset, GLenum format) {
     if (!offscreen()) throw Error("opengl", "color upload needs an offscreen target");
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(color_tex_.get(), 0, 0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE,
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage2D(color_tex_.get(), 0, 0, 0, width_, height_, format, GL_UNSIGNED_BYTE,
                         reinterpret_cast<const void*>(offset));
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }

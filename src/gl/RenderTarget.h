@@ -37,13 +37,14 @@ public:
 
     // Loads the color / depth attachment (offscreen targets) from a
     // pixel-unpack buffer (gl/ImageStream.h) holding GL-order rows: the color
-    // as packed RGB bytes of the whole image at `offset`; the depth (window
+    // as packed 4-byte pixels of the whole image at `offset`, in `format`
+    // (GL_RGBA or GL_BGRA, whichever the texture keeps: then a copy); the depth (window
     // depth, 1.0 = sky) as packed floats of the rows [terrain_row, rect.row1)
     // of `rect` (core rows, row 0 at the top) at `offset`, the rows of `rect`
     // above terrain_row cleared to 1.0 without a transfer, and the rest of the
     // attachment left as it was: a composite needs depth only where objects
     // can be drawn (ObjectRenderer::screen_rect).
-    void load_color(GLuint buffer, std::size_t offset);
+    void load_color(GLuint buffer, std::size_t offset, GLenum format);
     void load_depth(GLuint buffer, std::size_t offset, const PixelRect& rect, int terrain_row);
     // Copies this offscreen target's color into `dst` (a window's default
     // framebuffer or another target of the same size): a blit, no shader, no
