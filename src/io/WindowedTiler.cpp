@@ -730,8 +730,8 @@ TileWriteReport tile_raster_in_windows(const std::string& path, const std::strin
             ++empty;
             for (const TileFile file :
                  {TileFile::Heights, TileFile::Colors, TileFile::Apron, TileFile::D2, TileFile::Imagery}) {
-                const fs::path path = tile_path(dir, r, c, file);
-                if (before.count(path.filename().string())) fs::remove(path, ec);
+                const fs::path stale = tile_path(dir, r, c, file);
+                if (before.count(stale.filename().string())) fs::remove(stale, ec);
             }
             return;
         }
