@@ -79,45 +79,6 @@ std::uint32_t pack_color(const glm::dvec3& c) { return pack_rgb(to_rgb8(glm::vec
 
 } // namespace
 
-template <class F> void AerialTables::fit_column(const F& column, float dy_lo, float dy_hi) {
-    // Interpolation at the Chebyshev nodes of [-1, 1] (Trefethen, "Approximation
-    // Theory and Approximation Practice", ch. 4: near-minimax for a smooth
-    // function), solved for the monomial coefficients in double.
-    constexpr int n = kDegree + 1;
-    dy_hi_ = dy_hi;
-    const double mid = 0.5 * (double(dy_lo) + double(dy_hi)), half = 0.5 * (double(dy_hi) - double(dy_lo));
-    dy_mid_ = float(mid);
-    inv_half_ = float(1.0 / half);
-    double a[n][n + 1];
-    for (int r = 0; r < n; ++r) {
-        const double u = std::cos(3.14159265358979323846 * (r + 0.5) / n);
-        double p = 1.0;
-        for (int c = 0; c < n; ++c, p *= u) a[r][c] = p;
-        a[r][n] = column(mid + half * u);
-    }
-    for (int c = 0; c < n; ++c) { // Gauss-Jordan with partial pivoting
-        int piv = c;
-        for (int r = c + 1; r < n; ++r)
-            if (std::abs(a[r][c]) > std::abs(a[piv][c])) piv = r;
-        for (int k = 0; k <= n; ++k) std::swap(a[c][k], a[piv][k]);
-        for (int r = 0; r < n; ++r) {
-            if (r == c) continue;
-            const double q = a[r][c] / a[c][c];
-            for (int k = c; k <= n; ++k) a[r][k] -= q * a[c][k];
-        }
-    }
-    for (int c = 0; c < n; ++c) poly_c_[c] = float(a[c][n] / a[c][c]);
-    // The float evaluation against the exact column over the range.
-    poly_ = true;
-    double worst = 0.0;
-    for (int i = 0; i <= 1024; ++i) {
-        const float dy = float(double(dy_lo) + (double(dy_hi) - double(dy_lo)) * i / 1024.0);
-        const double exact = column(double(dy));
-        worst = std::max(worst, std::abs(double(column_poly(dy)) - exact) / exact);
-    }
-    poly_ = worst <= kPolyError;
-}
-
 void AerialTables::build(const AerialFrame& f, float dy_lo, float dy_hi) {
     if (!(dy_hi > dy_lo)) dy_hi = dy_lo + 1.0f;
     dy_lo_ = dy_lo;
@@ -129,9 +90,9 @@ void AerialTables::build(const AerialFrame& f, float dy_lo, float dy_hi) {
     const double least = std::min({f.beta.x, f.beta.y, f.beta.z});
     const double x_step = (least > 0.0 ? std::log(1024.0) / least : 1.0) / kColumns;
     column_.resize(kHeights);
-    auto column = [&](double dy) { return f.eye_density * height_factor(dy / f.scale_height) / x_step; };
-    for (int j = 0; j < kHeights; ++j) column_[std::size_t(j)] = float(column(dy_lo + dy_step * j));
-    fit_column(column, dy_lo, dy_hi);
+    for (int j = 0; j < kHeights; ++j)
+        column_[std::size_t(j)] =
+            float(f.eye_density * height_factor((dy_lo + dy_step * j) / f.scale_height) / x_step);
     if (transmit_.empty() || f.beta != built_.beta) {
         transmit_.resize(std::size_t(kColumns) + 1);
         for (int i = 0; i <= kColumns; ++i) transmit_[std::size_t(i)] = pack_weights(glm::exp(-f.beta * (x_step * i)));

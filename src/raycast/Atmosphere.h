@@ -112,14 +112,8 @@ private:
 // column X = rho0 d G(dy / H) per channel, and G depends on the height
 // difference alone, so three 1-D tables replace a (distance, height,
 // direction) volume:
-//   column      rho0 G(dy / H) over the terrain's height range below and
-//               above the eye, so that X = d column(dy): a polynomial of
-//               degree kDegree in the clamped dy (Chebyshev interpolation,
-//               float Horner, no gather: the dependent lookup before the
-//               transmittance's was a third of the resolve's time through the
-//               air), or where its relative error over the range exceeds
-//               kPolyError (heights spanning many scale heights) the nearest
-//               of kHeights entries;
+//   column[j]   rho0 G(dy_j / H) over the terrain's height range below and
+//               above the eye (kHeights entries), so that X = d column[j];
 //   transmit[i] T at X = i X_step, 10 bits per channel 0..256 (kColumns + 1
 //               entries up to where the least absorbed channel keeps 1/1024,
 //               nearest entry within 1 color level);
@@ -138,7 +132,7 @@ public:
     // A terrain pixel: packed surface color, eye distance, height relative to
     // the eye, cosine of the ray's angle to the sun.
     std::uint32_t terrain(std::uint32_t surface, float distance, float dy, float cos_sun) const {
-        const float x = distance * (poly_ ? column_poly(dy) : column_[std::size_t(height_index(dy))]) + 0.5f;
+        const float x = distance * column_[std::size_t(height_index(dy))] + 0.5f;
         const int i = int(x < float(kColumns) ? x : float(kColumns));
         return blend(surface, transmit_[std::size_t(i)], haze_[std::size_t(phase_index(cos_sun))]);
     }
@@ -146,22 +140,6 @@ public:
     std::uint32_t sky(float sine, float cos_sun) const {
         return shade_sky(opacity_[std::size_t(sky_index(sine))], haze_[std::size_t(phase_index(cos_sun))]);
     }
-
-    // The air column per unit distance as the polynomial (when poly()):
-    // c[0] + u (c[1] + u (... c[kDegree])), u = (clamp(dy) - mid) * inv_half,
-    // each operation rounded to float in that order, so that vectorised
-    // loops get the same bits.
-    float column_poly(float dy) const {
-        const float u = ((dy < dy_lo_ ? dy_lo_ : (dy > dy_hi_ ? dy_hi_ : dy)) - dy_mid_) * inv_half_;
-        float r = poly_c_[kDegree];
-        for (int k = kDegree - 1; k >= 0; --k) r = r * u + poly_c_[k];
-        return r;
-    }
-    bool poly() const { return poly_; }
-    const float* poly_coefficients() const { return poly_c_; }
-    float dy_hi() const { return dy_hi_; }
-    float dy_mid() const { return dy_mid_; }
-    float inv_half() const { return inv_half_; }
 
     // The indices, for loops that look the tables up themselves.
     int height_index(float dy) const { return clamp_index((dy - dy_lo_) * inv_dy_step_ + 0.5f, kHeights - 1); }
@@ -195,19 +173,11 @@ public:
     float inv_dy_step() const { return inv_dy_step_; }
 
     static constexpr int kHeights = 256, kColumns = 4096, kPhases = 1024, kSkies = 1024;
-    static constexpr int kDegree = 6;
-    static constexpr double kPolyError = 1e-5;
     static constexpr float kPhaseScale = 0.5f * float(kPhases - 1);
 
 private:
-    // Fits the polynomial of column (a function of dy, double) over [dy_lo, dy_hi] and sets poly().
-    template <class F> void fit_column(const F& column, float dy_lo, float dy_hi);
-
     AerialFrame built_;
     float dy_lo_ = 0.0f, inv_dy_step_ = 0.0f;
-    float dy_hi_ = 0.0f, dy_mid_ = 0.0f, inv_half_ = 0.0f;
-    bool poly_ = false;
-    float poly_c_[kDegree + 1] = {};
     std::vector<float> column_;
     std::vector<std::uint32_t> transmit_, haze_, opacity_;
 };

@@ -266,25 +266,12 @@ struct AirLanes {
         __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
         if constexpr (kTerrain) {
             const __m256 dy = _mm256_mul_ps(d, m);
-            __m256 column;
-            if (air.poly()) {
-                // AerialTables::column_poly.
-                const __m256 u = _mm256_mul_ps(
-                    _mm256_sub_ps(_mm256_min_ps(_mm256_max_ps(dy, _mm256_set1_ps(air.dy_lo())), _mm256_set1_ps(air.dy_hi())),
-                                  _mm256_set1_ps(air.dy_mid())),
-                    _mm256_set1_ps(air.inv_half()));
-                const float* coef = air.poly_coefficients();
-                column = _mm256_set1_ps(coef[AerialTables::kDegree]);
-                for (int k = AerialTables::kDegree - 1; k >= 0; --k)
-                    column = _mm256_add_ps(_mm256_mul_ps(column, u), _mm256_set1_ps(coef[k]));
-            } else {
-                const __m256i hj = clamp_lanes(
-                    _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, _mm256_set1_ps(air.dy_lo())), _mm256_set1_ps(air.inv_dy_step())),
-                                  half),
-                    float(AerialTables::kHeights - 1));
-                column = _mm256_i32gather_ps(air.column(), hj, 4);
-            }
-            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), column), half);
+            const __m256i hj = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, _mm256_set1_ps(air.dy_lo())),
+                                                                 _mm256_set1_ps(air.inv_dy_step())),
+                                                   half),
+                                     float(AerialTables::kHeights - 1));
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_i32gather_ps(air.column(), hj, 4)),
+                                           half);
             const __m256i w = _mm256_i32gather_epi32(
                 reinterpret_cast<const int*>(air.transmit()),
                 _mm256_cvttps_epi32(_mm256_min_ps(x, _mm256_set1_ps(float(AerialTables::kColumns)))), 4);
