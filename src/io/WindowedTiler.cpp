@@ -202,6 +202,39 @@ void read_metres(const Reader& r, const Plan& plan, int row0, int col0, int rows
     read_metres(r, plan, row0, col0, rows, cols, z.data(), cols);
 }
 
+// The one value, in metres, that every sample of the window reads when the
+// source reports holding no data there (GDALGetDataCoverageStatus: a VRT's
+// area without sources, a sparse GeoTIFF's unwritten blocks), so that the
+// window need not be read: GDAL fills such an area with one value
+// throughout (the band's no-data value, or 0), which its first sample
+// reads. Nothing when the source holds data there, cannot tell, or is
+// warped onto the grid.
+std::optional<float> uniform_void(const Reader& r, const Plan& plan, int row0, int col0, int rows, int cols) {
+    if (r.warp || rows <= 0 || cols <= 0 ||
+        GDALGetDataCoverageStatus(r.band, col0, row0, cols, rows, 0, nullptr) != GDAL_DATA_COVERAGE_STATUS_EMPTY)
+        return std::nullopt;
+    float v = 0;
+    read_metres(r, plan, row0, col0, 1, 1, &v, 1);
+    return v;
+}
+
+// As read_metres, not reading the parts of the window the source reports
+// holding no data (uniform_void), in column chunks where it holds some.
+void read_metres_sparse(const Reader& r, const Plan& plan, int row0, int col0, int rows, int cols, float* z, int stride) {
+    if (rows <= 0 || cols <= 0) return;
+    const int status = r.warp ? 0 : GDALGetDataCoverageStatus(r.band, col0, row0, cols, rows, 0, nullptr);
+    if (!(status & GDAL_DATA_COVERAGE_STATUS_EMPTY)) return read_metres(r, plan, row0, col0, rows, cols, z, stride);
+    constexpr int kChunk = 4096;
+    for (int j = col0; j < col0 + cols; j += kChunk) {
+        const int w = std::min(kChunk, col0 + cols - j);
+        float* at = z + (j - col0);
+        if (const std::optional<float> v = uniform_void(r, plan, row0, j, rows, w))
+            for (int i = 0; i < rows; ++i) std::fill_n(at + std::size_t(i) * stride, w, *v);
+        else
+            read_metres(r, plan, row0, j, rows, w, at, stride);
+    }
+}
+
 // FNV-1a 64 over 32-bit words in four interleaved lanes (one dependency chain
 // per lane), then over the lanes.
 constexpr std::uint64_t kFnvBasis = 1469598103934665603ull, kFnvPrime = 1099511628211ull;
@@ -306,26 +339,33 @@ void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::functi
         open_reader(r, plan, false);
         Partial& p = partials.local();
         const int row0 = s * strip, n = std::min(strip, rows - row0);
-        std::vector<float> z;
-        read_metres(r, plan, row0, 0, n, cols, z);
-        for (int i = 0; i < n; ++i) {
-            const float* row = z.data() + std::size_t(i) * std::size_t(cols);
-            for (int j = 0; j < cols; ++j) {
-                const float v = row[j];
-                if (v == kNoData) {
-                    ++p.voids;
-                    continue;
+        if (const std::optional<float> v = uniform_void(r, plan, row0, 0, n, cols); v && *v == kNoData) {
+            // A strip without data (most of a sparse mosaic): voids only.
+            p.voids += std::int64_t(n) * cols;
+            const std::vector<float> row(std::size_t(cols), kNoData);
+            std::fill_n(hashes.begin() + row0, n, row_hash(row.data(), cols));
+        } else {
+            std::vector<float> z(std::size_t(n) * std::size_t(cols));
+            read_metres_sparse(r, plan, row0, 0, n, cols, z.data(), cols);
+            for (int i = 0; i < n; ++i) {
+                const float* row = z.data() + std::size_t(i) * std::size_t(cols);
+                for (int j = 0; j < cols; ++j) {
+                    const float v = row[j];
+                    if (v == kNoData) {
+                        ++p.voids;
+                        continue;
+                    }
+                    if (!(std::abs(v) <= float(kWorldLimit)))
+                        throw Error(plan.path, "row " + std::to_string(row0 + i) + ", column " + std::to_string(j) +
+                                                   ": " + elevation_problem(double(v)) +
+                                                   " (not a terrain height; is the no-data value set?)");
+                    p.lo = std::min(p.lo, v);
+                    p.hi = std::max(p.hi, v);
+                    // Within kWorldLimit, so the conversion is exact and defined.
+                    p.integral = p.integral && v == float(std::int32_t(v));
                 }
-                if (!(std::abs(v) <= float(kWorldLimit)))
-                    throw Error(plan.path, "row " + std::to_string(row0 + i) + ", column " + std::to_string(j) + ": " +
-                                               elevation_problem(double(v)) +
-                                               " (not a terrain height; is the no-data value set?)");
-                p.lo = std::min(p.lo, v);
-                p.hi = std::max(p.hi, v);
-                // Within kWorldLimit, so the conversion is exact and defined.
-                p.integral = p.integral && v == float(std::int32_t(v));
+                hashes[std::size_t(row0 + i)] = row_hash(row, cols);
             }
-            hashes[std::size_t(row0 + i)] = row_hash(row, cols);
         }
         const int d = ++done;
         std::lock_guard<std::mutex> lock(progress_mutex);
@@ -445,14 +485,24 @@ struct CutWindow {
 CutWindow cut_window(const Reader& rd, BlockCache& cache, const Plan& plan, int r0, int r1, int c0, int c1) {
     const int h = r1 - r0 + 1, w = c1 - c0 + 1;
     std::vector<float> z(std::size_t(h) * std::size_t(w));
-    cache.read(rd, r0, c0, h, w, z.data(), w);
-    if (std::find(z.begin(), z.end(), kNoData) != z.end()) {
-        // The fill of a sample reads only the samples within the search
-        // distance, so this wider window fills the core as the whole raster would.
-        const int d = std::min(kFillSearchDistance, std::max(plan.rows, plan.cols));
-        const int br0 = std::max(0, r0 - d), br1 = std::min(plan.rows - 1, r1 + d);
-        const int bc0 = std::max(0, c0 - d), bc1 = std::min(plan.cols - 1, c1 + d);
-        const int bh = br1 - br0 + 1, bw = bc1 - bc0 + 1;
+    // The fill of a sample reads only the samples within the search
+    // distance, so a window widened by it fills the core as the whole raster
+    // would.
+    const int d = std::min(kFillSearchDistance, std::max(plan.rows, plan.cols));
+    const int br0 = std::max(0, r0 - d), br1 = std::min(plan.rows - 1, r1 + d);
+    const int bc0 = std::max(0, c0 - d), bc1 = std::min(plan.cols - 1, c1 + d);
+    const int bh = br1 - br0 + 1, bw = bc1 - bc0 + 1;
+    const std::optional<float> around = uniform_void(rd, plan, br0, bc0, bh, bw);
+    const bool void_around = around && *around == kNoData;
+    if (void_around) {
+        // No data within the fill's reach (most of a sparse mosaic): the fill
+        // has nothing to spread and leaves the window void, which becomes
+        // the lowest elevation below, so neither is done.
+        std::fill(z.begin(), z.end(), plan.integral ? std::round(plan.lo) : plan.lo);
+    } else {
+        cache.read(rd, r0, c0, h, w, z.data(), w);
+    }
+    if (!void_around && std::find(z.begin(), z.end(), kNoData) != z.end()) {
         std::vector<float> big(std::size_t(bh) * std::size_t(bw));
         cache.read(rd, br0, bc0, bh, bw, big.data(), bw);
         gdal::Dataset mem = gdal::create_mem(plan.path, bw, bh, 1, GDT_Float32);

@@ -18,6 +18,11 @@
 //      raster's windows are copied from a cache of blocks of the grid
 //      aligned to the tiles (an eighth of the memory bound), each warped
 //      once however many windows overlap it.
+//   Where the source reports holding no data (GDALGetDataCoverageStatus: a
+//   VRT mosaic's areas without sources, a sparse GeoTIFF's unwritten
+//   blocks) neither step reads it: the pass counts it void, and a tile with
+//   no data within the search distance of its window is the lowest
+//   elevation throughout, which the fill would leave it (the same tiles).
 // What equals the in-memory tiler, and what does not:
 //   - a source on square cells of a projected CRS (or none) without no-data:
 //     every tile, apron, d2, overview file byte-identical;

@@ -2,8 +2,9 @@
 // the same tiles as tiling the loaded terrain, byte for byte, on a
 // projected DEM with voids, on warped ones (geographic, non-square cells)
 // and on a real DEM; N = 3 parts run by GNU parallel (the README's
-// example) equal to one run; a VRT 100000 samples wide tiled whole within a
-// memory bound under RLIMIT_AS; one-line errors beyond the limits.
+// example) equal to one run; a sparse mosaic equal to its samples written
+// whole; a VRT 100000 samples wide tiled whole and a part of a 100000^2 one
+// within a memory bound under RLIMIT_AS; one-line errors beyond the limits.
 #include "RestrictedRun.h"
 #include "TestCameras.h"
 #include "TestSupport.h"
@@ -18,6 +19,7 @@
 #include <gtest/gtest.h>
 #include <ogr_srs_api.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -242,15 +244,9 @@ TEST(TileWindows, ThreePartsUnderGnuParallelEqualOneRun) {
 
 namespace {
 
-// Writes `vrt`, a virtual raster 100000 columns wide (beyond the 65537 a
-// terrain may have per side) and `rows` tall, no-data -32768, from one
-// generated 256^2 GeoTIFF of hills (100 + i + j m, `vrt` + ".block.tif"):
-// stretched over columns 0..98999 and 99100..99999 (columns 99000..99099 a
-// void, filled when tiled), and on top of that placed sample for sample at
-// rows 0..255, columns 512..767.
-void write_block_vrt(const std::string& vrt, int rows) {
+// Writes `block`, a 256^2 Int16 GeoTIFF of hills (100 + i + j m).
+void write_hills_block(const std::string& block) {
     GDALAllRegister();
-    const std::string block = vrt + ".block.tif";
     const char* options[] = {"COMPRESS=DEFLATE", nullptr};
     GDALDatasetH ds =
         GDALCreate(GDALGetDriverByName("GTiff"), block.c_str(), 256, 256, 1, GDT_Int16, const_cast<char**>(options));
@@ -261,19 +257,93 @@ void write_block_vrt(const std::string& vrt, int rows) {
     ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, 256, 256, z.data(), 256, 256, GDT_Int16, 0, 0),
               CE_None);
     GDALClose(ds);
-    const auto source = [&](int col, int row, int cols, int rows_) {
-        return "<SimpleSource><SourceFilename relativeToVRT=\"0\">" + block +
-               "</SourceFilename><SourceBand>1</SourceBand><SrcRect xOff=\"0\" yOff=\"0\" xSize=\"256\" "
-               "ySize=\"256\"/><DstRect xOff=\"" + std::to_string(col) + "\" yOff=\"" + std::to_string(row) +
-               "\" xSize=\"" + std::to_string(cols) + "\" ySize=\"" + std::to_string(rows_) + "\"/></SimpleSource>";
-    };
+}
+
+// A VRT source placing all of `block` (256^2) over `cols` x `rows` samples
+// from (`row`, `col`).
+std::string block_source(const std::string& block, int row, int col, int rows, int cols) {
+    return "<SimpleSource><SourceFilename relativeToVRT=\"0\">" + block +
+           "</SourceFilename><SourceBand>1</SourceBand><SrcRect xOff=\"0\" yOff=\"0\" xSize=\"256\" "
+           "ySize=\"256\"/><DstRect xOff=\"" + std::to_string(col) + "\" yOff=\"" + std::to_string(row) +
+           "\" xSize=\"" + std::to_string(cols) + "\" ySize=\"" + std::to_string(rows) + "\"/></SimpleSource>";
+}
+
+// Writes `vrt`, a virtual raster 100000 columns wide (beyond the 65537 a
+// terrain may have per side) and `rows` tall, no-data -32768, from the
+// hills of write_hills_block (`vrt` + ".block.tif") stretched over columns
+// 0..98999 and 99100..99999 (columns 99000..99099 a void, filled when
+// tiled), and on top of that placed sample for sample at rows 0..255,
+// columns 512..767.
+void write_block_vrt(const std::string& vrt, int rows) {
+    const std::string block = vrt + ".block.tif";
+    ASSERT_NO_FATAL_FAILURE(write_hills_block(block));
+    const auto source = [&](int col, int row, int cols, int rows_) { return block_source(block, row, col, rows_, cols); };
     std::ofstream(vrt) << "<VRTDataset rasterXSize=\"100000\" rasterYSize=\"" << rows
                        << "\"><VRTRasterBand dataType=\"Int16\" band=\"1\"><NoDataValue>-32768</NoDataValue>"
                        << source(0, 0, 99000, rows) << source(99100, 0, 900, rows) << source(512, 0, 256, 256)
                        << "</VRTRasterBand></VRTDataset>\n";
 }
 
+// Writes `vrt`, a sparse mosaic: a virtual raster of `rows` x `cols`,
+// no-data -32768, holding only the hills of write_hills_block (`vrt` +
+// ".block.tif") sample for sample at (`row`, `col`); the rest has no source
+// (GDALGetDataCoverageStatus: empty).
+void write_sparse_vrt(const std::string& vrt, int rows, int cols, int row, int col) {
+    const std::string block = vrt + ".block.tif";
+    ASSERT_NO_FATAL_FAILURE(write_hills_block(block));
+    std::ofstream(vrt) << "<VRTDataset rasterXSize=\"" << cols << "\" rasterYSize=\"" << rows
+                       << "\"><VRTRasterBand dataType=\"Int16\" band=\"1\"><NoDataValue>-32768</NoDataValue>"
+                       << block_source(block, row, col, 256, 256) << "</VRTRasterBand></VRTDataset>\n";
+}
+
+// Whether GDAL reports no data in rows `row`.. `row + rows` - 1 and the
+// columns likewise of `path`.
+bool reported_empty(const std::string& path, int row, int col, int rows, int cols) {
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+    if (!ds) return false;
+    const int status = GDALGetDataCoverageStatus(GDALGetRasterBand(ds, 1), col, row, cols, rows, 0, nullptr);
+    GDALClose(ds);
+    return status == GDAL_DATA_COVERAGE_STATUS_EMPTY;
+}
+
 } // namespace
+
+// Where a sparse mosaic has no source nothing is read: the survey of the
+// elevation range passes over it, and a tile without data within the fill's
+// reach is the lowest elevation throughout, not filled. Its tiles are those
+// of the same samples written whole to a GeoTIFF (every block present, read
+// and filled as any raster), byte for byte.
+TEST(TileWindows, SparseMosaicGivesTheSameTilesAsTheRasterWrittenWhole) {
+    test::ScratchDir scratch;
+    const std::string vrt = scratch / "sparse.vrt", whole = scratch / "whole.tif";
+    ASSERT_NO_FATAL_FAILURE(write_sparse_vrt(vrt, 700, 800, 0, 544));
+    GDALDatasetH src = GDALOpen(vrt.c_str(), GA_ReadOnly);
+    ASSERT_NE(src, nullptr);
+    GDALDatasetH copy = GDALCreateCopy(GDALGetDriverByName("GTiff"), whole.c_str(), src, FALSE, nullptr, nullptr, nullptr);
+    GDALClose(src);
+    ASSERT_NE(copy, nullptr);
+    GDALClose(copy);
+    // The lower left corner, beyond the fill's reach of the hills (tiles
+    // r4_c0, r5_c0 and r5_c1 and their windows): empty in the mosaic only.
+    ASSERT_TRUE(reported_empty(vrt, 383, 0, 317, 514));
+    ASSERT_FALSE(reported_empty(whole, 383, 0, 317, 514));
+    const std::string ref = scratch / "whole_tiles", dir = scratch / "sparse_tiles";
+    ASSERT_EQ(test::run_overflight("tile '" + whole + "' -o '" + ref + "' --tile-size 129").exit_code, 0);
+    const auto r = test::run_overflight("tile '" + vrt + "' -o '" + dir + "' --tile-size 129");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    int files = 0;
+    for (const auto& e : fs::directory_iterator(ref)) {
+        const std::string name = e.path().filename().string();
+        ++files;
+        std::string a = test::read_file_text(dir + "/" + name), b = test::read_file_text(e.path().string());
+        if (name == "index.json") // the source's name apart
+            for (std::string* text : {&a, &b})
+                if (const std::size_t at = text->find("\"source\""); at != std::string::npos)
+                    text->erase(at, text->find('\n', at) - at);
+        EXPECT_EQ(a, b) << name;
+    }
+    EXPECT_GT(files, 4 * 42);
+}
 
 // One tile of 8193^2 samples does not fit 64 MiB: one line naming the option,
 // before the source is read.
@@ -293,8 +363,7 @@ TEST(TileWindows, TileBeyondTheMemoryBoundIsRefused) {
 // space with --memory-mib 256: every tile holding source samples written,
 // the index complete, the placed block's samples exact and the void filled
 // within the source's range. (AddressSanitizer builds cannot start under
-// RLIMIT_AS: tests/RestrictedRun.h.) The same for a 100000^2 VRT (152881
-// tiles), too long for a test, is measured in the README.
+// RLIMIT_AS: tests/RestrictedRun.h.)
 TEST(TileWindows, LargeRasterIsTiledWithinTheMemoryBound) {
     test::ScratchDir scratch;
     const std::string big = scratch / "big.vrt", dir = scratch / "t";
@@ -330,6 +399,47 @@ TEST(TileWindows, LargeRasterIsTiledWithinTheMemoryBound) {
             EXPECT_GE(filled.sample_height(i, j), 100.0f) << i << ", " << j;
             EXPECT_LE(filled.sample_height(i, j), 610.0f) << i << ", " << j;
         }
+}
+
+// The first of 512 parts of a 100000^2 sparse mosaic (the hills at rows
+// 0..255, columns 512..767, no other source) under the same bound: the
+// survey reads only where the mosaic has data, the tiles beyond the fill's
+// reach are not filled. Its row of 391 tiles written, the index not yet
+// complete, the hills sample for sample (metres as stored: the range is
+// 100..610) and the void beyond the fill's reach the lowest elevation.
+TEST(TileWindows, PartOfALargeSparseMosaicIsTiledWithinTheMemoryBound) {
+    test::ScratchDir scratch;
+    const std::string big = scratch / "big.vrt", dir = scratch / "t";
+    ASSERT_NO_FATAL_FAILURE(write_sparse_vrt(big, 100000, 100000, 0, 512));
+    test::Restrictions limits;
+    limits.address_space_bytes = std::uint64_t(1) << 30;
+    const auto r = test::run_overflight_restricted(
+        "tile '" + big + "' -o '" + dir + "' --tile-size 257 --memory-mib 256 --part 1/512", limits);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("512x512 tiles of 257 samples, 391 written, 0 already done, 121 without data"),
+              std::string::npos)
+        << r.out;
+    const std::string text = test::read_file_text(dir + "/index.json");
+    EXPECT_NE(text.find("\"padded_size\": 131073"), std::string::npos);
+    EXPECT_NE(text.find("\"complete\": false"), std::string::npos);
+    const auto heights = [&](int c) {
+        std::vector<std::uint16_t> z(257 * 257, 0);
+        GDALDatasetH tile = GDALOpen((dir + "/r0_c" + std::to_string(c) + ".tif").c_str(), GA_ReadOnly);
+        EXPECT_NE(tile, nullptr) << c;
+        if (tile) {
+            EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(tile, 1), GF_Read, 0, 0, 257, 257, z.data(), 257, 257, GDT_UInt16,
+                                   0, 0),
+                      CE_None);
+            GDALClose(tile);
+        }
+        return z;
+    };
+    const std::vector<std::uint16_t> hills = heights(2), far = heights(300);
+    long long differing = 0;
+    for (int i = 0; i < 256; ++i)
+        for (int j = 0; j < 256; ++j) differing += hills[std::size_t(i) * 257 + std::size_t(j)] != 100 + i + j;
+    EXPECT_EQ(differing, 0);
+    EXPECT_EQ(std::count(far.begin(), far.end(), std::uint16_t(100)), 257 * 257);
 }
 #endif
 
