@@ -339,7 +339,7 @@ void survey(Plan& plan, GDALDatasetH src, std::int64_t budget, const std::functi
         open_reader(r, plan, false);
         Partial& p = partials.local();
         const int row0 = s * strip, n = std::min(strip, rows - row0);
-        if (const std::optional<float> v = uniform_void(r, plan, row0, 0, n, cols); v && *v == kNoData) {
+        if (const std::optional<float> uniform = uniform_void(r, plan, row0, 0, n, cols); uniform && *uniform == kNoData) {
             // A strip without data (most of a sparse mosaic): voids only.
             p.voids += std::int64_t(n) * cols;
             const std::vector<float> row(std::size_t(cols), kNoData);
