@@ -284,7 +284,7 @@ TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     for (int j = 0; j < H; ++j)
         for (int i = 0; i < kShearBlock; ++i)
             s.set(j, i, std::uint32_t(0x406080 + 0x010203 * i),
-                  std::uint32_t(std::min(S - 1, (S - 1) - 12 * j + i / 5 + (j % 7 == 0 ? 40 * (i % 3) : 0))));
+                  std::uint32_t(std::clamp((S - 1) - 12 * j + i / 5 + (j % 7 == 0 ? 40 * (i % 3) : 0), 0, S - 1)));
     ColorImage c1, c2;
     DepthImage z1, z2;
     c1.resize(W, H);
