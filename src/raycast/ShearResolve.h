@@ -38,6 +38,9 @@ struct ShearResolveTables {
     // computed in float in that order, so a kernel may compute it rather than
     // read it. 0: read slice_d.
     float d_first = 0.0f, d_step = 0.0f;
+    // The entries of slice_depth and slice_d (0: unknown, so that a kernel
+    // reads them one lane at a time).
+    int slices = 0;
 };
 
 // One block as the cast left it.
