@@ -53,11 +53,12 @@ struct ShearBlock {
 
 // The kernel that computes the pixels (all give the same bits). Auto picks
 // the fastest the CPU runs; the others, for tests and measurements, must be
-// resolve_kernel_available(). Avx512 (AVX-512 F, BW, DQ and VL) has a kernel
-// of its own in the imagery's drape (ShearDrape.h); the resolve runs its
-// AVX2 kernel for it. Simd128 is WebAssembly's (a build with -msimd128): the
-// GL_EXP fog and sky gradient in 4 lanes; the aerial perspective runs the
-// portable kernel there.
+// resolve_kernel_available(). Avx512 (AVX-512 F, BW, DQ and VL) has kernels
+// of its own for the aerial perspective (16 lanes, the tables read from
+// windows permuted in registers) and in the imagery's drape (ShearDrape.h);
+// for GL_EXP fog the resolve runs its AVX2 kernel. Simd128 is WebAssembly's
+// (a build with -msimd128): the GL_EXP fog and sky gradient in 4 lanes; the
+// aerial perspective runs the portable kernel there.
 enum class ResolveKernel { Auto, Portable, Avx2, Avx512, Simd128 };
 bool resolve_kernel_available(ResolveKernel kernel);
 
