@@ -423,9 +423,10 @@ OVERFLIGHT_RESOLVE_AVX512 inline __m512i air_sky16(__m512i v, __m512i haze) {
 // through lookup_near. kEven: as resolve_rows_avx2. A full block's pixels
 // go to the images straight from the registers.
 template <bool kTerrain, bool kSky, bool kEven>
-OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_air_avx512(const ShearResolveTables& t, const ShearBlock& blk, int H, int j0,
-                                                       int j1, const std::uint32_t* color, const std::uint32_t* slice,
-                                                       Rgb8* out_c, float* out_d, std::size_t W) {
+OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_air_avx512(const ShearResolveTables& t, const ShearBlock& blk, int H,
+                                                       int j0, int j1, const std::uint32_t* color,
+                                                       const std::uint32_t* slice, Rgb8* out_c, float* out_d,
+                                                       std::size_t W) {
     const AerialTables& air = *t.air;
     const __m512 one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
     const __m512 d_first = _mm512_set1_ps(t.d_first), d_step = _mm512_set1_ps(t.d_step);
@@ -434,7 +435,8 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_air_avx512(const ShearResolveTables&
     const __m512 columns = _mm512_set1_ps(float(AerialTables::kColumns));
     const __m512 sky_scale = _mm512_set1_ps(float(AerialTables::kSkies - 1));
     // 16 packed colors to 48 bytes of Rgb8: 12 bytes per 128-bit lane, then the lanes joined.
-    const __m512i rgb_bytes = _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
+    const __m512i rgb_bytes =
+        _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
     const __m512i rgb_words = _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
@@ -447,13 +449,13 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_air_avx512(const ShearResolveTables&
         alignas(64) float zs[kShearBlock];
         for (int i = 0; i < kShearBlock; i += 16) {
             const __m512 len = _mm512_sqrt_ps(_mm512_add_ps(_mm512_loadu_ps(blk.len2 + i), m2));
-            const __mmask16 terrain = kTerrain && kSky
-                                          ? _mm512_cmpgt_epi32_mask(_mm512_loadu_si512(blk.jend + i), _mm512_set1_epi32(j))
-                                          : __mmask16(kTerrain ? 0xFFFF : 0);
+            const __mmask16 terrain =
+                kTerrain && kSky ? _mm512_cmpgt_epi32_mask(_mm512_loadu_si512(blk.jend + i), _mm512_set1_epi32(j))
+                                 : __mmask16(kTerrain ? 0xFFFF : 0);
             const __m512 cos_sun =
                 _mm512_div_ps(_mm512_add_ps(_mm512_loadu_ps(blk.sun_dot + i), _mm512_mul_ps(m, sun_y)), len);
-            const __m512i p = clamp_lanes16(
-                _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(cos_sun, one), phase_scale), half), float(AerialTables::kPhases - 1));
+            const __m512 phase = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(cos_sun, one), phase_scale), half);
+            const __m512i p = clamp_lanes16(phase, float(AerialTables::kPhases - 1));
             const __m512i h = lookup_near(air.haze(), AerialTables::kPhases, p);
             __m512i pixel = _mm512_setzero_si512();
             __m512 depth = one;
@@ -471,9 +473,8 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_air_avx512(const ShearResolveTables&
                 const __m512i hj = clamp_lanes16(
                     _mm512_add_ps(_mm512_mul_ps(_mm512_sub_ps(_mm512_mul_ps(d, m), dy_lo), inv_dy_step), half),
                     float(AerialTables::kHeights - 1));
-                const __m512 x = _mm512_add_ps(
-                    _mm512_mul_ps(_mm512_mul_ps(d, len), _mm512_castsi512_ps(lookup_near(air.column(), AerialTables::kHeights, hj))),
-                    half);
+                const __m512 column = _mm512_castsi512_ps(lookup_near(air.column(), AerialTables::kHeights, hj));
+                const __m512 x = _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), column), half);
                 const __m512i w = lookup_near(air.transmit(), AerialTables::kColumns + 1,
                                               _mm512_cvttps_epi32(_mm512_min_ps(x, columns)));
                 const __m512i lit = air_blend16(_mm512_loadu_si512(sc + i), w, h);
