@@ -48,6 +48,7 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
     const CastFrame& f = s.frame;
     ShearResolveTables tables{f.rows.m.data(), s.slice_depth.data(), f.slices.df.data(), &s.fog, s.fog_color,
                               s.sky.entries()};
+    tables.slices = int(f.slices.df.size());
     if (f.slices.uniform) {
         tables.d_first = f.slices.df[0];
         tables.d_step = float(f.slices.step);

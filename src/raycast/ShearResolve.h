@@ -38,6 +38,9 @@ struct ShearResolveTables {
     // computed in float in that order, so a kernel may compute it rather than
     // read it. 0: read slice_d.
     float d_first = 0.0f, d_step = 0.0f;
+    // The entries of slice_depth and slice_d (0: unknown, so that a kernel
+    // reads them one lane at a time).
+    int slices = 0;
 };
 
 // One block as the cast left it.
@@ -50,11 +53,12 @@ struct ShearBlock {
 
 // The kernel that computes the pixels (all give the same bits). Auto picks
 // the fastest the CPU runs; the others, for tests and measurements, must be
-// resolve_kernel_available(). Avx512 (AVX-512 F, BW, DQ and VL) has a kernel
-// of its own in the imagery's drape (ShearDrape.h); the resolve runs its
-// AVX2 kernel for it. Simd128 is WebAssembly's (a build with -msimd128): the
-// GL_EXP fog and sky gradient in 4 lanes; the aerial perspective runs the
-// portable kernel there.
+// resolve_kernel_available(). Avx512 (AVX-512 F, BW, DQ and VL) has kernels
+// of its own for the aerial perspective (16 lanes, the tables read from
+// windows permuted in registers) and in the imagery's drape (ShearDrape.h);
+// for GL_EXP fog the resolve runs its AVX2 kernel. Simd128 is WebAssembly's
+// (a build with -msimd128): the GL_EXP fog and sky gradient in 4 lanes; the
+// aerial perspective runs the portable kernel there.
 enum class ResolveKernel { Auto, Portable, Avx2, Avx512, Simd128 };
 bool resolve_kernel_available(ResolveKernel kernel);
 

@@ -1,6 +1,6 @@
 // The shear resolve (ShearResolve): what the cast painted becomes image pixels
-// with the slice's window depth (Szenberg eq. 7), fog and sky; the AVX2 kernel
-// gives the same bits as the portable one.
+// with the slice's window depth (Szenberg eq. 7), fog and sky; the AVX2 and
+// AVX-512 kernels give the same bits as the portable one.
 #include "core/DataSet.h"
 #include "core/Image.h"
 #include "raycast/Atmosphere.h"
@@ -36,6 +36,14 @@ ShearBlock block(int n, const std::vector<int>& jend, const std::vector<float>& 
         b.sun_dot[i] = 0.0f;
     }
     return b;
+}
+
+// The kernels other than the portable one that this CPU runs.
+std::vector<ResolveKernel> fast_kernels() {
+    std::vector<ResolveKernel> out;
+    for (ResolveKernel k : {ResolveKernel::Avx2, ResolveKernel::Avx512})
+        if (resolve_kernel_available(k)) out.push_back(k);
+    return out;
 }
 
 } // namespace
@@ -191,6 +199,7 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
     sky.build(env);
     // The view depths read from the table, and computed (d[k] = 1 + 3 k in float).
     ShearResolveTables read{rows.data(), depth.data(), d.data(), &fog, 0x9AB0C8u, sky.entries()};
+    read.slices = S;
     ShearResolveTables even = read;
     even.d_first = 1.0f;
     even.d_step = 3.0f;
@@ -229,15 +238,21 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
             for (int i = 0; i < n; ++i) blk.sun_dot[i] = 2.0f * unit(rng) - 1.0f;
             resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c1.pixels.data() + 3, z1.pixels.data() + 3,
                                 std::size_t(W), ResolveKernel::Portable);
-            resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c2.pixels.data() + 3, z2.pixels.data() + 3,
-                                std::size_t(W), ResolveKernel::Avx2);
-            for (int r = 0; r < H; ++r) // nothing written beside the block's n columns
-                for (int c : {2, 3 + n}) {
-                    ASSERT_EQ(c2.at(c, r), untouched) << "n " << n << " column " << c << " row " << r;
-                    ASSERT_EQ(z2.at(c, r), -1.0f) << "n " << n << " column " << c << " row " << r;
-                }
-            EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8))) << "n " << n;
-            EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float))) << "n " << n;
+            for (ResolveKernel kernel : fast_kernels()) {
+                for (Rgb8& p : c2.pixels) p = untouched;
+                for (float& z : z2.pixels) z = -1.0f;
+                resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c2.pixels.data() + 3,
+                                    z2.pixels.data() + 3, std::size_t(W), kernel);
+                for (int r = 0; r < H; ++r) // nothing written beside the block's n columns
+                    for (int c : {2, 3 + n}) {
+                        ASSERT_EQ(c2.at(c, r), untouched) << "n " << n << " column " << c << " row " << r;
+                        ASSERT_EQ(z2.at(c, r), -1.0f) << "n " << n << " column " << c << " row " << r;
+                    }
+                EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)))
+                    << "n " << n << " kernel " << int(kernel);
+                EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float)))
+                    << "n " << n << " kernel " << int(kernel);
+            }
             long long terrain = 0;
             for (float v : z1.pixels) terrain += v >= 0.0f && v < 1.0f;
             EXPECT_GT(terrain, 0);
@@ -271,6 +286,7 @@ TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0u, sky.entries()};
     t.air = &air;
     t.sun_y = 0.1f;
+    t.slices = S;
     std::vector<int> jend(kShearBlock);
     std::vector<float> len2(kShearBlock);
     for (int i = 0; i < kShearBlock; ++i) {
@@ -293,8 +309,10 @@ TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     z2.resize(W, H);
     resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c1.pixels.data(), z1.pixels.data(), std::size_t(W),
                         ResolveKernel::Portable);
-    resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c2.pixels.data(), z2.pixels.data(), std::size_t(W),
-                        ResolveKernel::Avx2);
-    EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)));
-    EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float)));
+    for (ResolveKernel kernel : fast_kernels()) {
+        resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c2.pixels.data(), z2.pixels.data(),
+                            std::size_t(W), kernel);
+        EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8))) << int(kernel);
+        EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float))) << int(kernel);
+    }
 }
