@@ -135,10 +135,16 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
     }
 }
 
-// drape_lanes_avx2 for lanes [i, i + 16) with AVX-512: the same operations
-// in the same order on twice the lanes, so the same bits. Its permutes pick
-// from all 16 entries of a level table at once, and masks replace the
-// blends (a masked gather, a masked store of the painted lanes).
+// drape_lanes_avx2 for lanes [i, i + 16) with AVX-512, with the same bits.
+// Its permutes pick from all 16 entries of a level table at once, and masks
+// replace the blends (a masked gather, a masked store of the painted lanes).
+// It gathers nothing but texels on most rows: kEven (DrapeFrame::d_step)
+// computes the view depths of slices k and k - 1 as the slices were placed,
+// and the mip level is found among the row's level starts
+// (ImageryTexels::level_starts) rather than from the slice's gathered term,
+// so the slice tables' three gathers and the branch around them (taken on
+// most rows far from the eye, where nearly every pixel is a run of its own)
+// are gone.
 #define OVERFLIGHT_AVX512 __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
 template <bool kEven>
 OVERFLIGHT_AVX512 void drape_lanes_avx512(const DrapeFrame& f, const float* dir_x, const float* dir_z,
