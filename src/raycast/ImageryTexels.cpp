@@ -15,6 +15,9 @@ void ImageryTexels::bind(const ImageryPyramid* pyramid) {
     texels_.clear();
     lanes_ = LevelLanes{};
     lane_tables_ = false;
+    level_starts_.clear();
+    starts_of_slices_.clear();
+    starts_of_rows_.clear();
     if (!pyramid) return;
     x0_ = float(pyramid->x0());
     z0_ = float(pyramid->z0());
@@ -129,16 +132,26 @@ void ImageryTexels::prepare_rows(const float* row_m, int rows) {
     for (int j = 0; j < rows; ++j)
         row_log2_[std::size_t(j)] = row_m[j] < 0.0f ? -std::log2(std::max(-row_m[j], kFlattest)) : 0.0f;
     if (!pyramid_ || !lane_tables_) return;
+    // A camera that keeps its pitch, field of view and depth range (a
+    // flight) keeps its level starts.
+    if (level_starts_.size() == row_log2_.size() && starts_of_slices_ == slice_log2_ && starts_of_rows_ == row_log2_)
+        return;
+    starts_of_slices_ = slice_log2_;
+    starts_of_rows_ = row_log2_;
     // level(k, j) >= L >= 1 exactly where the unclamped l of level() is >= L
     // (int(l) truncates l >= 1 down) and L <= last_level_. Neighbouring rows
-    // have nearly the same term, so each row's search starts at the row
-    // before's boundaries.
+    // have nearly the same term (rows level or rising, the same), so each
+    // row's search starts at the row before's boundaries.
     level_starts_.resize(row_log2_.size());
     const int slices = int(slice_log2_.size());
     int hint[LevelLanes::kLevels] = {};
     for (int j = 0; j < rows; ++j) {
         const float r = row_log2_[std::size_t(j)];
         std::int32_t* starts = level_starts_[std::size_t(j)].k;
+        if (j > 0 && r == row_log2_[std::size_t(j - 1)]) {
+            level_starts_[std::size_t(j)] = level_starts_[std::size_t(j - 1)];
+            continue;
+        }
         starts[0] = 0;
         for (int L = 1; L < LevelLanes::kLevels; ++L) {
             if (L > last_level_) {

@@ -117,6 +117,7 @@ private:
     int last_level_ = 0;
     std::vector<float> slice_log2_, row_log2_;
     std::vector<LevelStarts> level_starts_;
+    std::vector<float> starts_of_slices_, starts_of_rows_; // the terms level_starts_ were found for
 };
 
 // One cast column of a floating horizon over vertical planes, as the cast

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -66,15 +67,27 @@ TEST(ImageryTexels, LevelStartsCountTheLevelOfEverySlice) {
     std::uniform_real_distribution<float> slope(-1.5f, 0.3f);
     for (int j = 0; j < rows; ++j)
         row_m[std::size_t(j)] = j < 40 ? -1.2f + 0.03f * float(j) : j < 45 ? -1e-5f : slope(rng);
+    auto check = [&] {
+        for (int j = 0; j < rows; ++j) {
+            const ImageryTexels::LevelStarts& starts = texels.level_starts(j);
+            EXPECT_EQ(starts.k[0], 0);
+            for (int k = 0; k < slices; ++k) {
+                int level = 0;
+                for (int l = 1; l < ImageryTexels::LevelLanes::kLevels; ++l) level += starts.k[l] <= k;
+                ASSERT_EQ(level, texels.level(k, j)) << "row " << j << " slice " << k;
+            }
+        }
+    };
     texels.prepare_slices(slice_d.data(), slices, 30.0);
     texels.prepare_rows(row_m.data(), rows);
-    for (int j = 0; j < rows; ++j) {
-        const ImageryTexels::LevelStarts& starts = texels.level_starts(j);
-        EXPECT_EQ(starts.k[0], 0);
-        for (int k = 0; k < slices; ++k) {
-            int level = 0;
-            for (int l = 1; l < ImageryTexels::LevelLanes::kLevels; ++l) level += starts.k[l] <= k;
-            ASSERT_EQ(level, texels.level(k, j)) << "row " << j << " slice " << k;
-        }
-    }
+    check();
+    // The same rows again keep their starts; other rows or slices get new ones.
+    texels.prepare_rows(row_m.data(), rows);
+    check();
+    std::reverse(row_m.begin(), row_m.end());
+    texels.prepare_rows(row_m.data(), rows);
+    check();
+    texels.prepare_slices(slice_d.data(), slices, 3.0);
+    texels.prepare_rows(row_m.data(), rows);
+    check();
 }
