@@ -27,8 +27,12 @@ namespace {
 void apply_imagery(const FloatingHorizonState& s, const Camera& camera, int c0, const ShearBlock& blk,
                    std::uint32_t* color, const std::uint32_t* slice) {
     const glm::dvec3 F = camera.forward(), R = camera.right();
-    const DrapeFrame frame{&s.imagery, s.frame.slices.df.data(), s.frame.slices.df[0], s.frame.rows.m.data(),
-                           float(camera.eye.x), float(camera.eye.z)};
+    DrapeFrame frame{&s.imagery, s.frame.slices.df.data(), s.frame.slices.df[0], s.frame.rows.m.data(),
+                     float(camera.eye.x), float(camera.eye.z)};
+    if (s.frame.slices.uniform) {
+        frame.d_first = s.frame.slices.df[0];
+        frame.d_step = float(s.frame.slices.step);
+    }
     float dir_x[kShearBlock], dir_z[kShearBlock];
     for (int i = 0; i < blk.n; ++i) {
         const double a = s.frame.columns.a[std::size_t(c0 + i)];

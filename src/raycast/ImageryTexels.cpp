@@ -3,6 +3,7 @@
 
 #include "core/Parallel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -14,6 +15,9 @@ void ImageryTexels::bind(const ImageryPyramid* pyramid) {
     texels_.clear();
     lanes_ = LevelLanes{};
     lane_tables_ = false;
+    level_starts_.clear();
+    starts_of_slices_.clear();
+    starts_of_rows_.clear();
     if (!pyramid) return;
     x0_ = float(pyramid->x0());
     z0_ = float(pyramid->z0());
@@ -80,6 +84,46 @@ void ImageryTexels::prepare_slices(const float* slice_d, int slices, double foca
         slice_log2_[std::size_t(k)] = float(std::log2(std::max(double(slice_d[k]) * scale, 1e-30)));
 }
 
+namespace {
+
+// The first k in [0, n) with pred(k), n if none, for a pred false up to
+// some k and true from there on: a galloping search (Bentley and Yao, "An
+// almost optimal algorithm for unbounded searching", IPL 1976) outward from
+// `hint`, so a boundary that moves little from one search to the next costs
+// a few probes.
+template <class Pred>
+int first_true_near(int hint, int n, Pred pred) {
+    hint = std::clamp(hint, 0, n);
+    int lo = 0, hi = n; // the boundary is in [lo, hi] (n: pred holds nowhere)
+    if (hint == n || pred(hint)) {
+        hi = hint;
+        for (int step = 1; hint - step >= 0; step *= 2) {
+            if (!pred(hint - step)) {
+                lo = hint - step + 1;
+                break;
+            }
+            hi = hint - step;
+        }
+    } else {
+        lo = hint + 1;
+        for (int step = 1; hint + step < n; step *= 2) {
+            if (pred(hint + step)) {
+                hi = hint + step;
+                break;
+            }
+            lo = hint + step + 1;
+        }
+    }
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (pred(mid)) hi = mid;
+        else lo = mid + 1;
+    }
+    return lo;
+}
+
+} // namespace
+
 void ImageryTexels::prepare_rows(const float* row_m, int rows) {
     row_log2_.resize(std::size_t(std::max(rows, 0)));
     // Slopes flatter than this are taken as this: the footprint along a ray
@@ -87,6 +131,41 @@ void ImageryTexels::prepare_rows(const float* row_m, int rows) {
     constexpr float kFlattest = 1.0f / 1024.0f;
     for (int j = 0; j < rows; ++j)
         row_log2_[std::size_t(j)] = row_m[j] < 0.0f ? -std::log2(std::max(-row_m[j], kFlattest)) : 0.0f;
+    if (!pyramid_ || !lane_tables_) return;
+    // A camera that keeps its pitch, field of view and depth range (a
+    // flight) keeps its level starts.
+    if (level_starts_.size() == row_log2_.size() && starts_of_slices_ == slice_log2_ && starts_of_rows_ == row_log2_)
+        return;
+    starts_of_slices_ = slice_log2_;
+    starts_of_rows_ = row_log2_;
+    // level(k, j) >= L >= 1 exactly where the unclamped l of level() is >= L
+    // (int(l) truncates l >= 1 down) and L <= last_level_. Neighbouring rows
+    // have nearly the same term (rows level or rising, the same), so each
+    // row's search starts at the row before's boundaries.
+    level_starts_.resize(row_log2_.size());
+    const int slices = int(slice_log2_.size());
+    int hint[LevelLanes::kLevels] = {};
+    for (int j = 0; j < rows; ++j) {
+        const float r = row_log2_[std::size_t(j)];
+        std::int32_t* starts = level_starts_[std::size_t(j)].k;
+        if (j > 0 && r == row_log2_[std::size_t(j - 1)]) {
+            level_starts_[std::size_t(j)] = level_starts_[std::size_t(j - 1)];
+            continue;
+        }
+        starts[0] = 0;
+        for (int L = 1; L < LevelLanes::kLevels; ++L) {
+            if (L > last_level_) {
+                starts[L] = std::numeric_limits<std::int32_t>::max();
+                continue;
+            }
+            const float level = float(L);
+            const int k = first_true_near(std::max(hint[L], hint[L - 1]), slices, [&](int s) {
+                return slice_log2_[std::size_t(s)] + r + 0.5f >= level;
+            });
+            hint[L] = k;
+            starts[L] = k < slices ? k : std::numeric_limits<std::int32_t>::max();
+        }
+    }
 }
 
 } // namespace overflight

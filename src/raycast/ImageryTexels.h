@@ -33,7 +33,8 @@ public:
     // log2(d_k / (fp texel)) of every slice from its view depth slice_d[k],
     // for a camera of focal length focal_px (pixels).
     void prepare_slices(const float* slice_d, int slices, double focal_px);
-    // log2(1 / |m_j|) of every row from its slope row_m[j] (0 for m_j >= 0).
+    // log2(1 / |m_j|) of every row from its slope row_m[j] (0 for m_j >= 0);
+    // after prepare_slices, whose slices level_starts() searches.
     void prepare_rows(const float* row_m, int rows);
     // The mip level of a pixel of row j painted from slice k.
     int level(int k, int j) const {
@@ -94,6 +95,17 @@ public:
     };
     const LevelLanes& level_lanes() const { return lanes_; }
     bool lane_tables() const { return lane_tables_; }
+    // With lane tables, the first slice of every level along row j: entry L
+    // is the smallest k with level(k, j) >= L (0 for L = 0; INT32_MAX where
+    // no slice reaches L, and past the last level). level(k, j) only grows
+    // with k (view depths grow along the slices), so it is the number of
+    // entries L >= 1 at or below k: a kernel finds it by a binary search in
+    // 16 entries (four permutes) instead of gathering the slice's term, and
+    // gets the same level.
+    struct LevelStarts {
+        alignas(64) std::int32_t k[LevelLanes::kLevels];
+    };
+    const LevelStarts& level_starts(int j) const { return level_starts_[std::size_t(j)]; }
 
 private:
     const ImageryPyramid* pyramid_ = nullptr;
@@ -104,6 +116,8 @@ private:
     float x0_ = 0, z0_ = 0;
     int last_level_ = 0;
     std::vector<float> slice_log2_, row_log2_;
+    std::vector<LevelStarts> level_starts_;
+    std::vector<float> starts_of_slices_, starts_of_rows_; // the terms level_starts_ were found for
 };
 
 // One cast column of a floating horizon over vertical planes, as the cast
@@ -123,6 +137,10 @@ struct DrapeFrame {
     float d_before_first = 0;       // the view depth before slice 0 (the near plane)
     const float* row_m = nullptr;   // slope of row j, bottom-up
     float eye_x = 0, eye_z = 0;
+    // Evenly spaced slices (d_step > 0): slice_d[k] is d_first + d_step * k,
+    // computed in float in that order, so a kernel may compute it rather than
+    // read it (ShearResolveTables' convention). 0: read slice_d.
+    float d_first = 0, d_step = 0;
 };
 void drape_column(const DrapeFrame& f, float dir_x, float dir_z, std::uint32_t* color, const std::uint32_t* slice,
                   int jend, std::ptrdiff_t row_stride);

@@ -135,11 +135,18 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
     }
 }
 
-// drape_lanes_avx2 for lanes [i, i + 16) with AVX-512: the same operations
-// in the same order on twice the lanes, so the same bits. Its permutes pick
-// from all 16 entries of a level table at once, and masks replace the
-// blends (a masked gather, a masked store of the painted lanes).
+// drape_lanes_avx2 for lanes [i, i + 16) with AVX-512, with the same bits.
+// Its permutes pick from all 16 entries of a level table at once, and masks
+// replace the blends (a masked gather, a masked store of the painted lanes).
+// It gathers nothing but texels on most rows: kEven (DrapeFrame::d_step)
+// computes the view depths of slices k and k - 1 as the slices were placed,
+// and the mip level is found among the row's level starts
+// (ImageryTexels::level_starts) rather than from the slice's gathered term,
+// so the slice tables' three gathers and the branch around them (taken on
+// most rows far from the eye, where nearly every pixel is a run of its own)
+// are gone.
 #define OVERFLIGHT_AVX512 __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
+template <bool kEven>
 OVERFLIGHT_AVX512 void drape_lanes_avx512(const DrapeFrame& f, const float* dir_x, const float* dir_z,
                                           const int* jend, int i, std::uint32_t* color, const std::uint32_t* slice) {
     const __m512i jendv = _mm512_loadu_si512(jend + i);
@@ -147,8 +154,6 @@ OVERFLIGHT_AVX512 void drape_lanes_avx512(const DrapeFrame& f, const float* dir_
     if (jtop == 0) return;
     const ImageryTexels& im = *f.imagery;
     const ImageryTexels::LevelLanes& lv = im.level_lanes();
-    const float* slog = im.slice_log2();
-    const float* rlog = im.row_log2();
     const int* texels = reinterpret_cast<const int*>(im.texels());
     const __m512 inv_x = _mm512_loadu_ps(lv.inv_x), inv_z = _mm512_loadu_ps(lv.inv_z);
     const __m512i w_tab = _mm512_loadu_si512(lv.w), h_tab = _mm512_loadu_si512(lv.h);
@@ -156,16 +161,16 @@ OVERFLIGHT_AVX512 void drape_lanes_avx512(const DrapeFrame& f, const float* dir_
     const __m512 dx = _mm512_loadu_ps(dir_x + i), dz = _mm512_loadu_ps(dir_z + i);
     const __m512 eye_x = _mm512_set1_ps(f.eye_x), eye_z = _mm512_set1_ps(f.eye_z);
     const __m512 x0 = _mm512_set1_ps(im.x0()), z0 = _mm512_set1_ps(im.z0());
-    const __m512 half = _mm512_set1_ps(0.5f), zero_f = _mm512_setzero_ps();
+    const __m512 zero_f = _mm512_setzero_ps();
     const __m512 d_before = _mm512_set1_ps(f.d_before_first);
+    const __m512 d_first = _mm512_set1_ps(f.d_first), d_step = _mm512_set1_ps(f.d_step);
     const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi32(1);
-    const __m512i last = _mm512_set1_epi32(im.last_level());
     const __m512i c28 = _mm512_set1_epi32(28), c3 = _mm512_set1_epi32(3);
     const __m512i rb_mask = _mm512_set1_epi32(0x00FF00FF), byte = _mm512_set1_epi32(0xFF);
     const __m512i round = _mm512_set1_epi32(0x00400040), max_rb = _mm512_set1_epi32(0x00FF00FF);
     __m512 m_top = zero_f;
     __m512i prev = _mm512_set1_epi32(-1);
-    __m512 dk = zero_f, d_prev = zero_f, sl = zero_f;
+    __m512 dk = zero_f, d_prev = zero_f;
     for (int j = jtop - 1; j >= 0; --j) {
         const float mj = f.row_m[j];
         const __m512 m = _mm512_set1_ps(mj);
@@ -175,11 +180,14 @@ OVERFLIGHT_AVX512 void drape_lanes_avx512(const DrapeFrame& f, const float* dir_
         const __mmask16 top = __mmask16(_mm512_cmpeq_epi32_mask(jendv, _mm512_set1_epi32(j + 1)) | __mmask16(~same));
         m_top = _mm512_mask_mov_ps(m_top, top, m);
         prev = k;
-        if (same != 0xFFFF) {
+        if constexpr (kEven) {
+            dk = _mm512_add_ps(d_first, _mm512_mul_ps(d_step, _mm512_cvtepi32_ps(k)));
+            d_prev = _mm512_mask_add_ps(d_before, _mm512_cmpneq_epi32_mask(k, zero), d_first,
+                                        _mm512_mul_ps(d_step, _mm512_cvtepi32_ps(_mm512_sub_epi32(k, one))));
+        } else if (same != 0xFFFF) {
             dk = _mm512_i32gather_ps(k, f.slice_d, 4);
             d_prev = _mm512_mask_i32gather_ps(d_before, _mm512_cmpneq_epi32_mask(k, zero), _mm512_sub_epi32(k, one),
                                               f.slice_d, 4);
-            sl = _mm512_i32gather_ps(k, slog, 4);
         }
         __m512 d = dk;
         if (mj < 0.0f) {
@@ -189,8 +197,13 @@ OVERFLIGHT_AVX512 void drape_lanes_avx512(const DrapeFrame& f, const float* dir_
         }
         const __m512 x = _mm512_add_ps(eye_x, _mm512_mul_ps(d, dx));
         const __m512 z = _mm512_add_ps(eye_z, _mm512_mul_ps(d, dz));
-        const __m512 l = _mm512_add_ps(_mm512_add_ps(sl, _mm512_set1_ps(rlog[j])), half);
-        const __m512i lvl = _mm512_min_epi32(_mm512_max_epi32(_mm512_cvttps_epi32(l), zero), last);
+        // ImageryTexels::level: how many of the row's level starts are at or below k.
+        const __m512i starts = _mm512_load_si512(im.level_starts(j).k);
+        __m512i lvl = zero;
+        for (int step = 8; step > 0; step /= 2) {
+            const __m512i up = _mm512_add_epi32(lvl, _mm512_set1_epi32(step));
+            lvl = _mm512_mask_mov_epi32(lvl, _mm512_cmple_epi32_mask(_mm512_permutexvar_epi32(up, starts), k), up);
+        }
         const __m512i col = _mm512_min_epi32(
             _mm512_max_epi32(_mm512_cvttps_epi32(_mm512_mul_ps(_mm512_sub_ps(x, x0), _mm512_permutexvar_ps(lvl, inv_x))), zero),
             _mm512_sub_epi32(_mm512_permutexvar_epi32(lvl, w_tab), one));
@@ -240,7 +253,9 @@ void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir
             dzs[i] = i < n ? dir_z[i] : 0.0f;
         }
         if (kernel == ResolveKernel::Avx512)
-            for (int i = 0; i < kShearBlock; i += 16) drape_lanes_avx512(f, dxs, dzs, ends, i, color, slice);
+            for (int i = 0; i < kShearBlock; i += 16)
+                if (f.d_step > 0.0f) drape_lanes_avx512<true>(f, dxs, dzs, ends, i, color, slice);
+                else drape_lanes_avx512<false>(f, dxs, dzs, ends, i, color, slice);
         else
             for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2(f, dxs, dzs, ends, i, color, slice);
         return;

@@ -16,10 +16,12 @@ namespace overflight {
 // Drapes the block's columns i < n: column i's plane runs along (dir_x[i],
 // dir_z[i]) per unit of view depth, its painted rows are j < jend[i], its
 // pixel j at color/slice[j * kShearBlock + i] (ShearResolve.h's scratch).
-// ResolveKernel::Avx2 and Avx512 (8 and 16 lanes, the same bits) must be
-// resolve_kernel_available(); Auto picks the wider one the CPU has, else
-// runs drape_column per column (ResolveKernel::Portable), as all do for
-// imagery without lane tables (ImageryTexels::lane_tables).
+// Evenly spaced slices (f.d_step > 0) let the Avx512 kernel compute view
+// depths rather than read them. ResolveKernel::Avx2 and Avx512 (8 and 16
+// lanes, the same bits) must be resolve_kernel_available(); Auto picks the
+// wider one the CPU has, else runs drape_column per column
+// (ResolveKernel::Portable), as all do for imagery without lane tables
+// (ImageryTexels::lane_tables).
 void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir_z, int n, const int* jend,
                        std::uint32_t* color, const std::uint32_t* slice, ResolveKernel kernel = ResolveKernel::Auto);
 

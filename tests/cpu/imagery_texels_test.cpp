@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 using namespace overflight;
 
@@ -46,4 +48,46 @@ TEST(ImageryTexels, TiledLevelsHoldTheRowMajorTexels) {
         EXPECT_EQ(texels.at(-100.0f, -100.0f, l), level.at(0, 0));
         EXPECT_EQ(texels.at(1000.0f, 1000.0f, l), level.at(level.width - 1, level.height - 1));
     }
+}
+
+// Every row's level starts give level(k, j) for every slice: rows down,
+// level, up and grazing, in an order that moves the boundaries both ways
+// from one row to the next, and slices far enough for the last level.
+TEST(ImageryTexels, LevelStartsCountTheLevelOfEverySlice) {
+    Image2D<Rgba8> img(200, 120);
+    const ImageryPyramid pyramid(std::move(img), 0.0, 0.0, 200.0, 120.0);
+    ImageryTexels texels;
+    texels.bind(&pyramid);
+    ASSERT_TRUE(texels.lane_tables());
+    ASSERT_EQ(texels.last_level(), 7);
+    const int slices = 3000, rows = 120;
+    std::vector<float> slice_d(slices), row_m(rows);
+    for (int k = 0; k < slices; ++k) slice_d[std::size_t(k)] = 0.25f + 0.5f * float(k);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> slope(-1.5f, 0.3f);
+    for (int j = 0; j < rows; ++j)
+        row_m[std::size_t(j)] = j < 40 ? -1.2f + 0.03f * float(j) : j < 45 ? -1e-5f : slope(rng);
+    auto check = [&] {
+        for (int j = 0; j < rows; ++j) {
+            const ImageryTexels::LevelStarts& starts = texels.level_starts(j);
+            EXPECT_EQ(starts.k[0], 0);
+            for (int k = 0; k < slices; ++k) {
+                int level = 0;
+                for (int l = 1; l < ImageryTexels::LevelLanes::kLevels; ++l) level += starts.k[l] <= k;
+                ASSERT_EQ(level, texels.level(k, j)) << "row " << j << " slice " << k;
+            }
+        }
+    };
+    texels.prepare_slices(slice_d.data(), slices, 30.0);
+    texels.prepare_rows(row_m.data(), rows);
+    check();
+    // The same rows again keep their starts; other rows or slices get new ones.
+    texels.prepare_rows(row_m.data(), rows);
+    check();
+    std::reverse(row_m.begin(), row_m.end());
+    texels.prepare_rows(row_m.data(), rows);
+    check();
+    texels.prepare_slices(slice_d.data(), slices, 3.0);
+    texels.prepare_rows(row_m.data(), rows);
+    check();
 }

@@ -1,7 +1,7 @@
 // The imagery draped over a shear block row by row (ShearDrape.h) gives the
 // same bits as drape_column (ImageryTexels.h) column by column: the AVX2 and
-// AVX-512 kernels against the portable one on random blocks, and a
-// hand-worked pixel.
+// AVX-512 kernels against the portable one on random blocks (slices read or,
+// evenly spaced, computed), and a hand-worked pixel.
 #include "core/ImageryPyramid.h"
 #include "raycast/ImageryTexels.h"
 #include "raycast/ShearDrape.h"
@@ -47,10 +47,13 @@ TEST(ShearDrape, SimdKernelsGiveTheSameBitsAsTheColumns) {
     for (int j = 0; j < H; ++j) row_m[std::size_t(j)] = -0.8f + 1.2f * float(j) / float(H - 1); // down, level, up
     texels.prepare_slices(slice_d.data(), slices, 20.0);
     texels.prepare_rows(row_m.data(), H);
-    const DrapeFrame frame{&texels, slice_d.data(), 0.3f, row_m.data(), 12.5f, 7.25f};
+    DrapeFrame frame{&texels, slice_d.data(), 0.3f, row_m.data(), 12.5f, 7.25f};
     std::uniform_int_distribution<std::uint32_t> light(0, 0xFFFFFFu);
     std::uniform_real_distribution<float> dir(-1.0f, 1.0f);
     for (int trial = 0; trial < 40; ++trial) {
+        // Every other trial tells the kernels that the slices are evenly spaced, as they are.
+        frame.d_first = trial % 2 ? 0.5f : 0.0f;
+        frame.d_step = trial % 2 ? 0.37f : 0.0f;
         const int n = trial % 5 == 0 ? 1 + trial % kShearBlock : kShearBlock;
         std::vector<std::uint32_t> color(std::size_t(kShearBlock) * H), slice(color.size());
         int jend[kShearBlock];
