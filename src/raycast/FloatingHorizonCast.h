@@ -92,5 +92,8 @@ long long cast_columns_portable(const CastTerrain& terrain, const CastFrame& fra
 long long cast_columns_x86_64_v3(const CastTerrain& terrain, const CastFrame& frame, SurfaceModel surface, int c0,
                                  int c1, std::uint32_t* color, std::uint32_t* slice, int* jend,
                                  std::ptrdiff_t col_stride, std::ptrdiff_t row_stride);
+long long cast_columns_x86_64_v4(const CastTerrain& terrain, const CastFrame& frame, SurfaceModel surface, int c0,
+                                 int c1, std::uint32_t* color, std::uint32_t* slice, int* jend,
+                                 std::ptrdiff_t col_stride, std::ptrdiff_t row_stride);
 
 } // namespace overflight

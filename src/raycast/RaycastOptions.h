@@ -23,7 +23,7 @@ enum class TiltMethod { Exact, Guedes };
 // The instruction set the Floating Horizon's block cast is compiled for. Auto
 // picks X86_64_v3 where the CPU has it; both paint the same pixels (the
 // others are for tests and measurements, when cast_kernel_available()).
-enum class CastKernel { Auto, Portable, X86_64_v3 };
+enum class CastKernel { Auto, Portable, X86_64_v3, X86_64_v4 };
 
 const char* to_string(SurfaceModel s);
 const char* to_string(TiltMethod t);
