@@ -19,6 +19,8 @@
 
 #include <bit>
 #include <climits>
+#include <cmath>
+#include <vector>
 
 // GCC 12's AVX-512 intrinsics fill their unused operands from a
 // self-initialised variable (_mm512_undefined_epi32), which
@@ -45,6 +47,31 @@ constexpr int kLanes = 16;
     _mm512_store_si512(v + 8, _mm512_permutex2var_epi32(lo, _mm512_add_epi32(first, _mm512_set1_epi32(8)), hi));
 }
 
+// A 16 x 16 tile of 32-bit values transposed: v[i] element e becomes v[e] element i.
+[[gnu::always_inline]] inline void transpose16(__m512i* v) {
+    __m512i t[16], u[16];
+    for (int i = 0; i < 16; i += 2) {
+        t[i] = _mm512_unpacklo_epi32(v[i], v[i + 1]);
+        t[i + 1] = _mm512_unpackhi_epi32(v[i], v[i + 1]);
+    }
+    // u[4a + b], 128-bit lane q: element 4q + b of v[4a .. 4a + 3].
+    for (int a = 0; a < 16; a += 4) {
+        u[a] = _mm512_unpacklo_epi64(t[a], t[a + 2]);
+        u[a + 1] = _mm512_unpackhi_epi64(t[a], t[a + 2]);
+        u[a + 2] = _mm512_unpacklo_epi64(t[a + 1], t[a + 3]);
+        u[a + 3] = _mm512_unpackhi_epi64(t[a + 1], t[a + 3]);
+    }
+    for (int b = 0; b < 4; ++b) { // the 128-bit lanes of u[b], u[4 + b], u[8 + b], u[12 + b] transposed
+        const __m512i v0 = _mm512_shuffle_i32x4(u[b], u[4 + b], 0x44), v1 = _mm512_shuffle_i32x4(u[b], u[4 + b], 0xEE);
+        const __m512i v2 = _mm512_shuffle_i32x4(u[8 + b], u[12 + b], 0x44);
+        const __m512i v3 = _mm512_shuffle_i32x4(u[8 + b], u[12 + b], 0xEE);
+        v[b] = _mm512_shuffle_i32x4(v0, v2, 0x88);
+        v[4 + b] = _mm512_shuffle_i32x4(v0, v2, 0xDD);
+        v[8 + b] = _mm512_shuffle_i32x4(v1, v3, 0x88);
+        v[12 + b] = _mm512_shuffle_i32x4(v1, v3, 0xDD);
+    }
+}
+
 // Columns [c0, c1) (at most kLanes) of a block as cast_blocks casts them
 // (kMask false), output as cast_columns describes (kStride: the row stride).
 // The lanes step their 32.32 positions together as integer part and
@@ -58,8 +85,6 @@ constexpr int kLanes = 16;
 template <std::ptrdiff_t kStride>
 long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
                      std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride) {
-    static_assert(std::has_single_bit(std::size_t(kStride)), "rows are addressed by a shift");
-    constexpr unsigned kRowShift = unsigned(std::countr_zero(std::size_t(kStride)));
     const Columns& cc = f.columns;
     const double* slice_d = f.slices.d.data();
     const double step = f.slices.d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
@@ -77,7 +102,6 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     alignas(64) std::int64_t gx[kLanes] = {}, gz[kLanes] = {}, sx[kLanes] = {}, sz[kLanes] = {};
     alignas(64) int jv[kLanes] = {};
     alignas(64) float mjv[kLanes] = {};
-    alignas(64) int lane_off[kLanes] = {};
     SliceRunBound coarse[kLanes], fine[kLanes];
     int k1[kLanes] = {}, next[kLanes] = {}, kc[kLanes] = {}, j_before[kLanes] = {};
     bool hot[kLanes] = {}, casting[kLanes] = {};
@@ -86,7 +110,6 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     for (int l = 0; l < c1 - c0; ++l) {
         const std::size_t ic = std::size_t(c0 + l);
         jend[l] = 0;
-        lane_off[l] = int(l * col_stride);
         const int k0 = std::max(cc.k0[ic], 0), kl = std::min(cc.k1[ic], k_end);
         if (k0 >= kl || nrows == 0) continue;
         const double d0 = slice_d[std::size_t(k0)];
@@ -115,7 +138,6 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     // that the read stays within the array's allocation at its last sample.
     const void* height_base = reinterpret_cast<const char*>(heights) - 2;
     const __m512i cols_v = _mm512_set1_epi32(t.terrain.cols());
-    const __m512i off_v = _mm512_load_si512(lane_off);
     const __m512i one = _mm512_set1_epi32(1);
     const __m512i nrows_v = _mm512_set1_epi32(nrows);
     __m512i ix, fx, iz, fz, six, sfx, siz, sfz;
@@ -123,6 +145,18 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     split64(gz, iz, fz);
     split64(sx, six, sfx);
     split64(sz, siz, sfz);
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i paint_rows_v = _mm512_set1_epi32(kPaintRows);
+    const __m512 nrows_f = _mm512_set1_ps(float(nrows));
+    const RowSearch search(rows, nrows);
+    const __m512 m0_v = _mm512_set1_ps(search.m0()), inv_step_v = _mm512_set1_ps(search.inv_step());
+    // Each lane paints its own column-major stripe (kPaintRows rows of
+    // padding, whole 16-row tiles), copied to the output at the end.
+    const std::ptrdiff_t stripe = (nrows + kPaintRows + 15) / 16 * 16;
+    thread_local std::vector<std::uint32_t> stripes;
+    if (stripes.size() < std::size_t(2 * kLanes * stripe)) stripes.resize(std::size_t(2 * kLanes * stripe));
+    std::uint32_t* const stripe_c = stripes.data();
+    std::uint32_t* const stripe_s = stripe_c + kLanes * stripe;
     __m512i j = _mm512_setzero_si512();
     __m512 mj = _mm512_load_ps(mjv);
 
@@ -189,17 +223,62 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
         const __m512i word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), act, ci, colors, 4);
         const __m512 sigma = _mm512_add_ps(_mm512_mul_ps(_mm512_cvtepi32_ps(raw), _mm512_set1_ps(ma[k])),
                                            _mm512_set1_ps(mb[k]));
-        __mmask16 up = _mm512_mask_cmp_ps_mask(act, sigma, mj, _CMP_GT_OQ);
+        const __mmask16 up = _mm512_mask_cmp_ps_mask(act, sigma, mj, _CMP_GT_OQ);
         if (up) {
-            const __m512i kv = _mm512_set1_epi32(k);
-            do { // paint, move the horizon up one pixel (lines 10-14), every lane still above it
-                const __m512i at = _mm512_add_epi32(off_v, _mm512_slli_epi32(j, kRowShift));
-                _mm512_mask_i32scatter_epi32(color, up, at, word, 4);
-                _mm512_mask_i32scatter_epi32(slice, up, at, kv, 4);
-                j = _mm512_mask_add_epi32(j, up, j, one);
-                mj = _mm512_mask_i32gather_ps(mj, up, j, rows, 4);
-                up = _mm512_mask_cmp_ps_mask(up, sigma, mj, _CMP_GT_OQ);
-            } while (up);
+            // The first row not below each rising sample (RowSearch): its
+            // guess from the table's ends, checked against the rows on either
+            // side; rows[nrows] = +inf stops the search.
+            const __m512 t_guess = _mm512_min_ps(
+                _mm512_max_ps(_mm512_mul_ps(_mm512_sub_ps(sigma, m0_v), inv_step_v), _mm512_set1_ps(-1.0f)), nrows_f);
+            __m512i top = _mm512_min_epi32(_mm512_cvttps_epi32(_mm512_add_ps(t_guess, _mm512_set1_ps(1.0f))), nrows_v);
+            const __m512 below_top = _mm512_mask_i32gather_ps(_mm512_set1_ps(-INFINITY),
+                                                              _mm512_mask_cmpgt_epi32_mask(up, top, zero), 
+                                                              _mm512_sub_epi32(top, one), rows, 4);
+            __m512 at_top = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), up, top, rows, 4);
+            const __mmask16 off = _mm512_mask_cmp_ps_mask(up, below_top, sigma, _CMP_GE_OQ) |
+                                  _mm512_mask_cmp_ps_mask(up, at_top, sigma, _CMP_LT_OQ);
+            if (off) [[unlikely]] { // a guess off by a row or more
+                alignas(64) int tv[kLanes];
+                alignas(64) float sv[kLanes], av[kLanes];
+                _mm512_store_si512(tv, top);
+                _mm512_store_ps(sv, sigma);
+                _mm512_store_ps(av, at_top);
+                for (unsigned m = off; m; m &= m - 1) {
+                    const int l = std::countr_zero(m);
+                    tv[l] = search.first_not_below(sv[l], tv[l]);
+                    av[l] = rows[tv[l]];
+                }
+                top = _mm512_load_si512(tv);
+                at_top = _mm512_load_ps(av);
+            }
+            // Paint rows [j, top) (lines 10-14): kPaintRows from the horizon
+            // up in every lane's stripe, painted or not (the rows a lane does
+            // not reach are painted again or lie above its column's top), the
+            // rest for the rare taller spans.
+            alignas(64) int jv_now[kLanes];
+            alignas(64) std::uint32_t wv[kLanes];
+            _mm512_store_si512(jv_now, j);
+            _mm512_store_si512(wv, word);
+            const __m128i kv = _mm_set1_epi32(k);
+            for (int l = 0; l < kLanes; ++l) {
+                const std::ptrdiff_t at = std::ptrdiff_t(l) * stripe + jv_now[l];
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_c + at), _mm_set1_epi32(int(wv[l])));
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_s + at), kv);
+            }
+            if (const unsigned tall = _mm512_mask_cmpgt_epi32_mask(up, _mm512_sub_epi32(top, j), paint_rows_v))
+                [[unlikely]] {
+                alignas(64) int tv[kLanes];
+                _mm512_store_si512(tv, top);
+                for (unsigned m = tall; m; m &= m - 1) {
+                    const int l = std::countr_zero(m);
+                    for (int r = jv_now[l] + kPaintRows; r < tv[l]; ++r) {
+                        stripe_c[std::ptrdiff_t(l) * stripe + r] = wv[l];
+                        stripe_s[std::ptrdiff_t(l) * stripe + r] = std::uint32_t(k);
+                    }
+                }
+            }
+            j = _mm512_mask_mov_epi32(j, up, top);
+            mj = _mm512_mask_mov_ps(mj, up, at_top);
             if (const unsigned full = _mm512_mask_cmpeq_epi32_mask(act, j, nrows_v)) [[unlikely]] {
                 // Columns full: done after this slice.
                 for (unsigned m = full; m; m &= m - 1) jend[std::countr_zero(m)] = nrows;
@@ -232,19 +311,40 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             k = due;
         }
     }
+    // The stripes to the output, rows [0, jend) of each column.
+    const int n = c1 - c0;
+    if constexpr (kStride == 1) {
+        for (int l = 0; l < n; ++l) {
+            std::copy_n(stripe_c + l * stripe, jend[l], color + l * col_stride);
+            std::copy_n(stripe_s + l * stripe, jend[l], slice + l * col_stride);
+        }
+    } else {
+        int top = 0;
+        for (int l = 0; l < n; ++l) top = std::max(top, jend[l]);
+        const __mmask16 lanes = __mmask16((1u << n) - 1);
+        for (int r0 = 0; r0 < top; r0 += 16) {
+            for (std::uint32_t* s : {stripe_c, stripe_s}) {
+                __m512i v[16];
+                for (int l = 0; l < 16; ++l) v[l] = _mm512_loadu_si512(s + l * stripe + r0);
+                transpose16(v);
+                std::uint32_t* out = (s == stripe_c ? color : slice) + std::ptrdiff_t(r0) * kStride;
+                for (int r = 0; r < std::min(16, top - r0); ++r)
+                    _mm512_mask_storeu_epi32(out + r * kStride, lanes, v[r]);
+            }
+        }
+    }
     return visited;
 }
 
 // cast_columns_body's kernel for the evenly spaced slices of level 0: the
-// lanes where they apply, cast_blocks elsewhere (a light mask; a scratch
-// whose offsets overflow 32 bits; a grid of 2^31 samples or more).
+// lanes where they apply, cast_blocks elsewhere (a light mask; a row-major
+// scratch whose columns are not adjacent; a grid of 2^31 samples or more).
 struct LaneColumns {
     template <std::ptrdiff_t kStride, bool kEvenRows>
     static long long cast(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
                           std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride) {
-        const double span = double(kLanes) * double(col_stride) + double(f.rows.count + 1) * double(kStride);
         const double samples = double(t.terrain.cols()) * double(t.terrain.rows());
-        if (t.other_colors || span >= 0x1p31 || samples >= 0x1p31)
+        if (t.other_colors || (kStride != 1 && col_stride != 1) || samples >= 0x1p31)
             return cast_blocks<kStride, kEvenRows>(t, f, c0, c1, color, slice, jend, col_stride);
         long long visited = 0;
         for (int g = c0; g < c1; g += kLanes) {
