@@ -32,6 +32,10 @@ namespace overflight {
 namespace {
 
 constexpr int kLanes = 16;
+// Slices ahead of the cast that the lanes' samples are prefetched: the
+// gathers' loads wait on the terrain's lines (far past L2), and the window of
+// out-of-order execution holds only a couple of slices.
+constexpr int kAhead = 8;
 
 // 16 signed 64-bit values split into their high and low 32 bits (a 32.32
 // position's integer part and fraction), and joined back.
@@ -46,6 +50,41 @@ constexpr int kLanes = 16;
     _mm512_store_si512(v, _mm512_permutex2var_epi32(lo, first, hi));
     _mm512_store_si512(v + 8, _mm512_permutex2var_epi32(lo, _mm512_add_epi32(first, _mm512_set1_epi32(8)), hi));
 }
+
+// The 32.32 positions of 16 lanes as integer parts and fractions, stepped
+// together: the fraction's carry is added to the integer part, so the sums
+// are those of 64-bit steps.
+struct Cursor {
+    __m512i ix, fx, iz, fz;
+    // Positions (gx, gz) plus n steps (sx, sz).
+    [[gnu::always_inline]] void set(const std::int64_t* gx, const std::int64_t* gz, const std::int64_t* sx,
+                                    const std::int64_t* sz, int n) {
+        alignas(64) std::int64_t x[kLanes], z[kLanes];
+        for (int l = 0; l < kLanes; ++l) {
+            x[l] = gx[l] + std::int64_t(n) * sx[l];
+            z[l] = gz[l] + std::int64_t(n) * sz[l];
+        }
+        split64(x, ix, fx);
+        split64(z, iz, fz);
+    }
+    [[gnu::always_inline]] void get(std::int64_t* gx, std::int64_t* gz) const {
+        join64(ix, fx, gx);
+        join64(iz, fz, gz);
+    }
+    [[gnu::always_inline]] void step(const Cursor& s) {
+        const __m512i one = _mm512_set1_epi32(1);
+        fx = _mm512_add_epi32(fx, s.fx);
+        ix = _mm512_mask_add_epi32(_mm512_add_epi32(ix, s.ix), _mm512_cmplt_epu32_mask(fx, s.fx),
+                                   _mm512_add_epi32(ix, s.ix), one);
+        fz = _mm512_add_epi32(fz, s.fz);
+        iz = _mm512_mask_add_epi32(_mm512_add_epi32(iz, s.iz), _mm512_cmplt_epu32_mask(fz, s.fz),
+                                   _mm512_add_epi32(iz, s.iz), one);
+    }
+    // The index of each lane's nearest sample on a grid of `cols` columns.
+    [[gnu::always_inline]] __m512i sample(__m512i cols) const {
+        return _mm512_add_epi32(_mm512_mullo_epi32(iz, cols), ix);
+    }
+};
 
 // A 16 x 16 tile of 32-bit values transposed: v[i] element e becomes v[e] element i.
 [[gnu::always_inline]] inline void transpose16(__m512i* v) {
@@ -72,19 +111,21 @@ constexpr int kLanes = 16;
     }
 }
 
-// Columns [c0, c1) (at most kLanes) of a block as cast_blocks casts them
-// (kMask false), output as cast_columns describes (kStride: the row stride).
-// The lanes step their 32.32 positions together as integer part and
-// fraction (the fraction's carry added: the same sums as 64-bit steps);
-// lane l samples slice k while it casts (a run that its tests did not skip).
-// Lines 9-15 of Algorithm 1 run on all lanes whose sample rises above their
-// horizon: paint one row, read the next row's slope, again while any lane
-// still rises. The tests of run skipping run per lane at the slices where
-// cast_run makes them (its coarse and fine runs start at the column's first
-// slice plus a multiple of kRunFine), between slices.
-template <std::ptrdiff_t kStride>
+// Columns [c0, c1) (at most kLanes) of a block as cast_blocks<kBlock, true>
+// casts them without a light mask, into the block's scratch (color, slice:
+// column c0's entries; row stride kBlock). Lane l samples slice k while its
+// column casts (a run that its tests did not skip): the samples of the lanes
+// are gathered, sigma compared with each lane's horizon as a mask, and for
+// the lanes that rise the first row not below the sample is found at once
+// (RowSearch's guess, checked against the rows on either side), so no lane
+// waits on another's painting. Lane l paints its own stripe (column-major:
+// kPaintRows rows from the horizon up in one store, as the scalar cast does
+// row by row); the stripes are transposed into the block at the end. The
+// tests of run skipping run per lane between slices, at the slices where
+// cast_run makes them, with the same outcome; the lanes all skip: on to the
+// first slice where a test is due.
 long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
-                     std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride) {
+                     std::uint32_t* slice, int* jend) {
     const Columns& cc = f.columns;
     const double* slice_d = f.slices.d.data();
     const double step = f.slices.d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
@@ -140,11 +181,13 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     const __m512i cols_v = _mm512_set1_epi32(t.terrain.cols());
     const __m512i one = _mm512_set1_epi32(1);
     const __m512i nrows_v = _mm512_set1_epi32(nrows);
-    __m512i ix, fx, iz, fz, six, sfx, siz, sfz;
-    split64(gx, ix, fx);
-    split64(gz, iz, fz);
-    split64(sx, six, sfx);
-    split64(sz, siz, sfz);
+    Cursor at, ahead, steps;
+    split64(sx, steps.ix, steps.fx);
+    split64(sz, steps.iz, steps.fz);
+    at.set(gx, gz, sx, sz, 0);
+    ahead.set(gx, gz, sx, sz, kAhead);
+    const std::size_t last_sample = t.terrain.heights().size() - 1;
+    const __m512i last_v = _mm512_set1_epi32(int(last_sample));
     const __m512i zero = _mm512_setzero_si512();
     const __m512i paint_rows_v = _mm512_set1_epi32(kPaintRows);
     const __m512 nrows_f = _mm512_set1_ps(float(nrows));
@@ -165,8 +208,7 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     int due = k;         // the first slice where a lane's test is due
     for (;;) {
         if (k == due) {
-            join64(ix, fx, gx);
-            join64(iz, fz, gz);
+            at.get(gx, gz);
             _mm512_store_si512(jv, j);
             _mm512_store_ps(mjv, mj);
             for (unsigned m = live; m; m &= m - 1) { // cast_run's decisions, lane by lane
@@ -205,19 +247,25 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             due = INT_MAX;
             for (unsigned m = live; m; m &= m - 1) due = std::min(due, next[std::countr_zero(m)]);
             if (active == 0) { // every lane skips: on to the first test due
-                for (unsigned m = live; m; m &= m - 1) {
-                    const int l = std::countr_zero(m);
-                    gx[l] += std::int64_t(due - k) * sx[l];
-                    gz[l] += std::int64_t(due - k) * sz[l];
-                }
-                split64(gx, ix, fx);
-                split64(gz, iz, fz);
+                at.set(gx, gz, sx, sz, due - k);
+                ahead.set(gx, gz, sx, sz, due - k + kAhead);
                 k = due;
                 continue;
             }
         }
         const __mmask16 act = __mmask16(active);
-        const __m512i ci = _mm512_add_epi32(_mm512_mullo_epi32(iz, cols_v), ix);
+        {
+            // Prefetch the samples kAhead slices on of the lanes casting now
+            // (most cast on: a run that paints is followed by one cast
+            // without a test); the others read sample 0.
+            alignas(64) int pv[kLanes];
+            _mm512_store_si512(pv, _mm512_maskz_min_epu32(__mmask16(active), ahead.sample(cols_v), last_v));
+            for (int l = 0; l < kLanes; ++l) {
+                _mm_prefetch(reinterpret_cast<const char*>(heights + pv[l]), _MM_HINT_T0);
+                _mm_prefetch(reinterpret_cast<const char*>(colors + pv[l]), _MM_HINT_T0);
+            }
+        }
+        const __m512i ci = at.sample(cols_v);
         const __m512i raw = _mm512_srli_epi32(
             _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), act, ci, height_base, 2), 16);
         const __m512i word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), act, ci, colors, 4);
@@ -261,9 +309,9 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             _mm512_store_si512(wv, word);
             const __m128i kv = _mm_set1_epi32(k);
             for (int l = 0; l < kLanes; ++l) {
-                const std::ptrdiff_t at = std::ptrdiff_t(l) * stripe + jv_now[l];
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_c + at), _mm_set1_epi32(int(wv[l])));
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_s + at), kv);
+                const std::ptrdiff_t p = std::ptrdiff_t(l) * stripe + jv_now[l];
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_c + p), _mm_set1_epi32(int(wv[l])));
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_s + p), kv);
             }
             if (const unsigned tall = _mm512_mask_cmpgt_epi32_mask(up, _mm512_sub_epi32(top, j), paint_rows_v))
                 [[unlikely]] {
@@ -291,67 +339,47 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             }
         }
         visited += std::popcount(active);
-        fx = _mm512_add_epi32(fx, sfx);
-        ix = _mm512_mask_add_epi32(_mm512_add_epi32(ix, six), _mm512_cmplt_epu32_mask(fx, sfx),
-                                   _mm512_add_epi32(ix, six), one);
-        fz = _mm512_add_epi32(fz, sfz);
-        iz = _mm512_mask_add_epi32(_mm512_add_epi32(iz, siz), _mm512_cmplt_epu32_mask(fz, sfz),
-                                   _mm512_add_epi32(iz, siz), one);
+        at.step(steps);
+        ahead.step(steps);
         ++k;
         if (active == 0 && k < due) { // the lanes that cast are done: on to the first test due
-            join64(ix, fx, gx);
-            join64(iz, fz, gz);
-            for (unsigned m = live; m; m &= m - 1) {
-                const int l = std::countr_zero(m);
-                gx[l] += std::int64_t(due - k) * sx[l];
-                gz[l] += std::int64_t(due - k) * sz[l];
-            }
-            split64(gx, ix, fx);
-            split64(gz, iz, fz);
+            at.get(gx, gz);
+            at.set(gx, gz, sx, sz, due - k);
+            ahead.set(gx, gz, sx, sz, due - k + kAhead);
             k = due;
         }
     }
-    // The stripes to the output, rows [0, jend) of each column.
-    const int n = c1 - c0;
-    if constexpr (kStride == 1) {
-        for (int l = 0; l < n; ++l) {
-            std::copy_n(stripe_c + l * stripe, jend[l], color + l * col_stride);
-            std::copy_n(stripe_s + l * stripe, jend[l], slice + l * col_stride);
+    // The stripes to the block's rows [0, jend) of each column, 16 x 16 tiles transposed.
+    int top = 0;
+    for (int l = 0; l < c1 - c0; ++l) top = std::max(top, jend[l]);
+    const __mmask16 lanes = __mmask16((1u << (c1 - c0)) - 1);
+    for (int r0 = 0; r0 < top; r0 += 16)
+        for (int which = 0; which < 2; ++which) {
+            const std::uint32_t* from = (which == 0 ? stripe_c : stripe_s) + r0;
+            std::uint32_t* to = (which == 0 ? color : slice) + std::ptrdiff_t(r0) * kBlock;
+            __m512i v[16];
+            for (int l = 0; l < 16; ++l) v[l] = _mm512_loadu_si512(from + l * stripe);
+            transpose16(v);
+            for (int r = 0; r < std::min(16, top - r0); ++r) _mm512_mask_storeu_epi32(to + r * kBlock, lanes, v[r]);
         }
-    } else {
-        int top = 0;
-        for (int l = 0; l < n; ++l) top = std::max(top, jend[l]);
-        const __mmask16 lanes = __mmask16((1u << n) - 1);
-        for (int r0 = 0; r0 < top; r0 += 16) {
-            for (std::uint32_t* s : {stripe_c, stripe_s}) {
-                __m512i v[16];
-                for (int l = 0; l < 16; ++l) v[l] = _mm512_loadu_si512(s + l * stripe + r0);
-                transpose16(v);
-                std::uint32_t* out = (s == stripe_c ? color : slice) + std::ptrdiff_t(r0) * kStride;
-                for (int r = 0; r < std::min(16, top - r0); ++r)
-                    _mm512_mask_storeu_epi32(out + r * kStride, lanes, v[r]);
-            }
-        }
-    }
     return visited;
 }
 
 // cast_columns_body's kernel for the evenly spaced slices of level 0: the
-// lanes where they apply, cast_blocks elsewhere (a light mask; a row-major
-// scratch whose columns are not adjacent; a grid of 2^31 samples or more).
+// lanes for the shear camera's evenly spaced rows (where RowSearch's guess is
+// within a row) without a light mask, on a grid of fewer than 2^31 samples;
+// cast_blocks elsewhere.
 struct LaneColumns {
     template <std::ptrdiff_t kStride, bool kEvenRows>
     static long long cast(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
                           std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride) {
         const double samples = double(t.terrain.cols()) * double(t.terrain.rows());
-        if (t.other_colors || (kStride != 1 && col_stride != 1) || samples >= 0x1p31)
+        if (!kEvenRows || t.other_colors || col_stride != 1 || samples >= 0x1p31)
             return cast_blocks<kStride, kEvenRows>(t, f, c0, c1, color, slice, jend, col_stride);
         long long visited = 0;
-        for (int g = c0; g < c1; g += kLanes) {
-            const std::ptrdiff_t o = std::ptrdiff_t(g - c0) * col_stride;
-            visited += cast_lanes<kStride>(t, f, g, std::min(g + kLanes, c1), color + o, slice + o, jend + (g - c0),
-                                           col_stride);
-        }
+        for (int g = c0; g < c1; g += kLanes)
+            visited += cast_lanes(t, f, g, std::min(g + kLanes, c1), color + (g - c0), slice + (g - c0),
+                                  jend + (g - c0));
         return visited;
     }
 };
