@@ -8,7 +8,9 @@
 //
 // One body (FloatingHorizonCast.inl) compiled once per instruction set
 // (CastKernel): FloatingHorizonCast.cpp for the baseline, which also picks
-// the kernel at run time, FloatingHorizonCastX86_64_v3.cpp for x86-64-v3.
+// the kernel at run time, FloatingHorizonCastX86_64_v3.cpp for x86-64-v3,
+// FloatingHorizonCastX86_64_v4.cpp for x86-64-v4 (its own kernel for the
+// shear camera's evenly spaced slices: 16 columns in lockstep).
 #include "core/SunLight.h"
 #include "core/Terrain.h"
 #include "raycast/FloatingHorizonTables.h"

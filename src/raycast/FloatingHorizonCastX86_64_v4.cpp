@@ -20,7 +20,6 @@
 #include <bit>
 #include <climits>
 #include <cmath>
-#include <vector>
 
 // GCC 12's AVX-512 intrinsics fill their unused operands from a
 // self-initialised variable (_mm512_undefined_epi32), which
@@ -84,6 +83,30 @@ struct Cursor {
     [[gnu::always_inline]] __m512i sample(__m512i cols) const {
         return _mm512_add_epi32(_mm512_mullo_epi32(iz, cols), ix);
     }
+};
+
+// A thread's stripes (cast_lanes), grown as needed. Not a std::vector: this
+// file must define no symbol that a baseline build also defines (a template's
+// instance), so that none compiled for x86-64-v4 stands in for it.
+class Stripes {
+public:
+    Stripes() = default;
+    Stripes(const Stripes&) = delete;
+    Stripes& operator=(const Stripes&) = delete;
+    ~Stripes() { delete[] data_; }
+    std::uint32_t* get(std::size_t n) {
+        if (n > size_) {
+            delete[] data_;
+            data_ = nullptr;
+            data_ = new std::uint32_t[n];
+            size_ = n;
+        }
+        return data_;
+    }
+
+private:
+    std::uint32_t* data_ = nullptr;
+    std::size_t size_ = 0;
 };
 
 // A 16 x 16 tile of 32-bit values transposed: v[i] element e becomes v[e] element i.
@@ -196,9 +219,8 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     // Each lane paints its own column-major stripe (kPaintRows rows of
     // padding, whole 16-row tiles), copied to the output at the end.
     const std::ptrdiff_t stripe = (nrows + kPaintRows + 15) / 16 * 16;
-    thread_local std::vector<std::uint32_t> stripes;
-    if (stripes.size() < std::size_t(2 * kLanes * stripe)) stripes.resize(std::size_t(2 * kLanes * stripe));
-    std::uint32_t* const stripe_c = stripes.data();
+    thread_local Stripes stripes;
+    std::uint32_t* const stripe_c = stripes.get(std::size_t(2 * kLanes * stripe));
     std::uint32_t* const stripe_s = stripe_c + kLanes * stripe;
     __m512i j = _mm512_setzero_si512();
     __m512 mj = _mm512_load_ps(mjv);
