@@ -100,7 +100,12 @@ void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool
     DepthImage depth;
     RaycastStats stats;
     fh.render(cam, env, opt, color, depth, &stats); // warm-up
-    for (auto _ : state) fh.render(cam, env, opt, color, depth, &stats);
+    double ms_cast = 0;
+    for (auto _ : state) {
+        fh.render(cam, env, opt, color, depth, &stats);
+        ms_cast += stats.ms_cast;
+    }
+    state.counters["cast_ms"] = ms_cast / double(state.iterations());
     state.counters["ns_per_sample"] = benchmark::Counter(double(stats.samples) * 1e-9 * double(state.iterations()),
                                                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
     state.counters["samples"] = double(stats.samples);
@@ -135,6 +140,21 @@ void BM_AerialTables(benchmark::State& state) {
 void BM_VoxelNoSkip(benchmark::State& s) {
     RaycastOptions o;
     o.skip_runs = false;
+    run_fast(s, Projection::Shear, o);
+}
+// The scalar block cast compiled for x86-64-v3 (CastKernel): beside
+// BM_Voxel / BM_VoxelNoSkip, which run the x86-64-v4 kernel (columns in
+// lockstep) where the CPU has it, in one run
+// (--benchmark_enable_random_interleaving on a busy machine).
+void BM_VoxelV3(benchmark::State& s) {
+    RaycastOptions o;
+    o.kernel = CastKernel::X86_64_v3;
+    run_fast(s, Projection::Shear, o);
+}
+void BM_VoxelNoSkipV3(benchmark::State& s) {
+    RaycastOptions o;
+    o.skip_runs = false;
+    o.kernel = CastKernel::X86_64_v3;
     run_fast(s, Projection::Shear, o);
 }
 void BM_VoxelBilinear(benchmark::State& s) {
@@ -182,6 +202,8 @@ BENCHMARK(BM_VoxelShadows)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRe
 BENCHMARK(BM_VoxelAllLooks)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AerialTables)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelNoSkip)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelV3)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelNoSkipV3)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelLod)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelNearStep)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -63,6 +63,12 @@ bool cast_kernel_available(CastKernel kernel) {
 #else
         return false;
 #endif
+    case CastKernel::X86_64_v4:
+#if OVERFLIGHT_CAST_X86_64_V4
+        return __builtin_cpu_supports("x86-64-v4");
+#else
+        return false;
+#endif
     }
     return false;
 }
@@ -71,6 +77,12 @@ long long cast_columns(const CastTerrain& terrain, const CastFrame& frame, const
                        int c1, std::uint32_t* color, std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride,
                        std::ptrdiff_t row_stride) {
     if (c1 - c0 > kBlock) throw std::logic_error("FloatingHorizon: more columns than one block");
+#if OVERFLIGHT_CAST_X86_64_V4
+    static const bool v4 = cast_kernel_available(CastKernel::X86_64_v4);
+    if (v4 && (options.kernel == CastKernel::Auto || options.kernel == CastKernel::X86_64_v4))
+        return cast_columns_x86_64_v4(terrain, frame, options.surface, c0, c1, color, slice, jend, col_stride,
+                                      row_stride);
+#endif
 #if OVERFLIGHT_CAST_X86_64_V3
     static const bool v3 = cast_kernel_available(CastKernel::X86_64_v3);
     if (v3 && options.kernel != CastKernel::Portable)

@@ -8,7 +8,9 @@
 //
 // One body (FloatingHorizonCast.inl) compiled once per instruction set
 // (CastKernel): FloatingHorizonCast.cpp for the baseline, which also picks
-// the kernel at run time, FloatingHorizonCastX86_64_v3.cpp for x86-64-v3.
+// the kernel at run time, FloatingHorizonCastX86_64_v3.cpp for x86-64-v3,
+// FloatingHorizonCastX86_64_v4.cpp for x86-64-v4 (its own kernel for the
+// shear camera's evenly spaced slices: 16 columns in lockstep).
 #include "core/SunLight.h"
 #include "core/Terrain.h"
 #include "raycast/FloatingHorizonTables.h"
@@ -90,6 +92,9 @@ long long cast_columns_portable(const CastTerrain& terrain, const CastFrame& fra
                                 int c1, std::uint32_t* color, std::uint32_t* slice, int* jend,
                                 std::ptrdiff_t col_stride, std::ptrdiff_t row_stride);
 long long cast_columns_x86_64_v3(const CastTerrain& terrain, const CastFrame& frame, SurfaceModel surface, int c0,
+                                 int c1, std::uint32_t* color, std::uint32_t* slice, int* jend,
+                                 std::ptrdiff_t col_stride, std::ptrdiff_t row_stride);
+long long cast_columns_x86_64_v4(const CastTerrain& terrain, const CastFrame& frame, SurfaceModel surface, int c0,
                                  int c1, std::uint32_t* color, std::uint32_t* slice, int* jend,
                                  std::ptrdiff_t col_stride, std::ptrdiff_t row_stride);
 

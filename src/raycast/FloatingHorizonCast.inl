@@ -665,6 +665,18 @@ template <std::ptrdiff_t kStride, bool kEvenRows>
     return block.run();
 }
 
+// The evenly spaced slices of level 0 as cast_blocks casts them: what
+// cast_columns_body runs unless its caller brings a kernel of its own for
+// them (FloatingHorizonCastX86_64_v4.cpp).
+struct BlockColumns {
+    template <std::ptrdiff_t kStride, bool kEvenRows>
+    [[gnu::always_inline]] static long long cast(const CastTerrain& t, const CastFrame& f, int c0, int c1,
+                                                 std::uint32_t* color, std::uint32_t* slice, int* jend,
+                                                 std::ptrdiff_t col_stride) {
+        return cast_blocks<kStride, kEvenRows>(t, f, c0, c1, color, slice, jend, col_stride);
+    }
+};
+
 // The distance LOD's coarser levels the same way, level after level, each
 // column continuing from the row (jend) where the finer slices left it. A
 // level-L slice reads the level's cell of the nearest sample at the position
@@ -687,6 +699,8 @@ template <std::ptrdiff_t kStride, bool kEvenRows>
     return visited;
 }
 
+// Blocks: how the evenly spaced slices of level 0 are cast (BlockColumns).
+template <class Blocks = BlockColumns>
 [[gnu::always_inline]] inline long long cast_columns_body(const CastTerrain& t, const CastFrame& f,
                                                           SurfaceModel surface, int c0, int c1, std::uint32_t* color,
                                                           std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride,
@@ -699,9 +713,10 @@ template <std::ptrdiff_t kStride, bool kEvenRows>
     // `blocks`: the evenly spaced slices (all of them, or the LOD's
     // level-0 part) as cast_blocks.
     if (!bil && f.slices.even > 0) {
-        if (even_rows) visited = cast_blocks<kBlock, true>(t, f, c0, c1, color, slice, jend, col_stride);
-        else if (row_stride == kBlock) visited = cast_blocks<kBlock, false>(t, f, c0, c1, color, slice, jend, col_stride);
-        else visited = cast_blocks<1, false>(t, f, c0, c1, color, slice, jend, col_stride);
+        if (even_rows) visited = Blocks::template cast<kBlock, true>(t, f, c0, c1, color, slice, jend, col_stride);
+        else if (row_stride == kBlock)
+            visited = Blocks::template cast<kBlock, false>(t, f, c0, c1, color, slice, jend, col_stride);
+        else visited = Blocks::template cast<1, false>(t, f, c0, c1, color, slice, jend, col_stride);
         if (uniform) return visited;
     }
     if (uniform) { // bilinear

@@ -21,9 +21,10 @@ enum class SurfaceModel { Blocks, Bilinear };
 enum class TiltMethod { Exact, Guedes };
 
 // The instruction set the Floating Horizon's block cast is compiled for. Auto
-// picks X86_64_v3 where the CPU has it; both paint the same pixels (the
-// others are for tests and measurements, when cast_kernel_available()).
-enum class CastKernel { Auto, Portable, X86_64_v3 };
+// picks X86_64_v4 (16 columns in lockstep for the shear camera's cast) or
+// else X86_64_v3 where the CPU has it; all paint the same pixels (the others
+// are for tests and measurements, when cast_kernel_available()).
+enum class CastKernel { Auto, Portable, X86_64_v3, X86_64_v4 };
 
 const char* to_string(SurfaceModel s);
 const char* to_string(TiltMethod t);

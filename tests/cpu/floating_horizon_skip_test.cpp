@@ -262,37 +262,54 @@ TEST(FloatingHorizonRunSkipping, LodReadsFewerSamplesThanTheExactCast) {
     EXPECT_LT(coarse.samples_visited, exact.samples_visited) << coarse.samples_visited << " vs " << exact.samples_visited;
 }
 
-// The block cast compiled for x86-64-v3 (CastKernel) paints what the portable
-// one paints, bit for bit, in every mode that reaches it. Views large enough
-// that one rounding done differently (an FMA) shows.
+// The block cast compiled for x86-64-v3 and the one for x86-64-v4 (its
+// columns in lockstep, CastKernel) paint what the portable one paints, bit
+// for bit, in every mode that reaches them, visiting the same samples. Views
+// large enough that one rounding done differently (an FMA) shows; headings
+// off the grid's axes and eyes off the terrain (columns that start at
+// different slices).
 TEST(FloatingHorizonCastKernels, SameImageOnEveryInstructionSet) {
     if (!cast_kernel_available(CastKernel::X86_64_v3)) GTEST_SKIP() << "no x86-64-v3 on this CPU";
     const DataSet ds = make_demo_island({1025});
     FloatingHorizon fh(ds.terrain);
     ColorImage c1, c2;
     DepthImage d1, d2;
-    RaycastStats stats;
-    for (bool lod : {false, true}) // the LOD: uneven slices, run skipping on its levels
-    for (Projection proj : {Projection::Shear, Projection::Tilt})
-        for (SurfaceModel surface : {SurfaceModel::Blocks, SurfaceModel::Bilinear})
-            for (double heading = 0; heading < 360; heading += 45)
-                for (double pitch : {-30.0, 0.0, 15.0}) {
-                    RaycastOptions portable, v3;
-                    portable.surface = v3.surface = surface;
-                    portable.lod = v3.lod = lod;
-                    portable.lod_pixels = v3.lod_pixels = 0.1;
-                    portable.kernel = CastKernel::Portable;
-                    v3.kernel = CastKernel::X86_64_v3;
-                    Camera cam = test::across_terrain(ds.terrain, heading, pitch, proj);
-                    cam.width = 960;
-                    cam.height = 540;
-                    fh.render(cam, ds.environment, portable, c1, d1);
-                    fh.render(cam, ds.environment, v3, c2, d2, &stats);
-                    EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)))
-                        << "color, lod " << lod << " heading " << heading << " pitch " << pitch;
-                    EXPECT_EQ(0, std::memcmp(d1.pixels.data(), d2.pixels.data(), d1.pixels.size() * sizeof(float)))
-                        << "depth, lod " << lod << " heading " << heading << " pitch " << pitch;
-                    // Terrain in view: the images have something to disagree on.
-                    EXPECT_GT(stats.pixels_painted, 0) << "heading " << heading << " pitch " << pitch;
-                }
+    RaycastStats s1, s2;
+    for (CastKernel kernel : {CastKernel::X86_64_v3, CastKernel::X86_64_v4}) {
+        if (!cast_kernel_available(kernel)) continue;
+        for (bool lod : {false, true}) // the LOD: uneven slices, run skipping on its levels
+        for (Projection proj : {Projection::Shear, Projection::Tilt})
+            for (SurfaceModel surface : {SurfaceModel::Blocks, SurfaceModel::Bilinear})
+                for (double heading = 7.5; heading < 360; heading += 45)
+                    for (double pitch : {-30.0, 0.0, 15.0})
+                        for (bool off_terrain : {false, true}) {
+                        RaycastOptions portable, fast;
+                        portable.surface = fast.surface = surface;
+                        portable.lod = fast.lod = lod;
+                        portable.lod_pixels = fast.lod_pixels = 0.1;
+                        portable.kernel = CastKernel::Portable;
+                        fast.kernel = kernel;
+                        Camera cam = test::across_terrain(ds.terrain, heading, pitch, proj);
+                        cam.width = 960;
+                        cam.height = 540;
+                        if (off_terrain) { // behind the grid's edge, looking across it
+                            const glm::dvec3 back = 0.5 * std::max(ds.terrain.width(), ds.terrain.depth()) * cam.forward();
+                            cam.eye.x -= back.x;
+                            cam.eye.z -= back.z;
+                        }
+                        fh.render(cam, ds.environment, portable, c1, d1, &s1);
+                        fh.render(cam, ds.environment, fast, c2, d2, &s2);
+                        const std::string what = std::string("kernel ") + (kernel == CastKernel::X86_64_v3 ? "v3" : "v4") +
+                                                 ", lod " + std::to_string(lod) + " heading " +
+                                                 std::to_string(heading) + " pitch " + std::to_string(pitch) +
+                                                 (off_terrain ? " off the terrain" : "");
+                        EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)))
+                            << "color, " << what;
+                        EXPECT_EQ(0, std::memcmp(d1.pixels.data(), d2.pixels.data(), d1.pixels.size() * sizeof(float)))
+                            << "depth, " << what;
+                        EXPECT_EQ(s1.samples_visited, s2.samples_visited) << what;
+                        // Terrain in view: the images have something to disagree on.
+                        EXPECT_GT(s2.pixels_painted, 0) << what;
+                    }
+    }
 }

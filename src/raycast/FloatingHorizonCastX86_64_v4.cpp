@@ -1,0 +1,419 @@
+// The block cast compiled for x86-64-v4 (AVX-512 F/BW/DQ/VL): everything as
+// FloatingHorizonCast.inl casts it, except the papers' case without a light
+// mask (evenly spaced one-cell slices of level 0, `blocks` surface), which
+// advances 16 columns in lockstep, one slice at a time, in vector registers.
+// src/CMakeLists.txt builds this file alone with -march=x86-64-v4 and defines
+// OVERFLIGHT_CAST_X86_64_V4 where it does (GCC, x86-64); cast_columns runs
+// it only on a CPU that has the level.
+//
+// Based on: Szenberg, Gattass, Carvalho, "An Algorithm for the Visualization
+// of a Terrain with Objects", SIBGRAPI 1997, sec. 5.2: slice k lies at one
+// view depth for every column, so the columns of a block can take slice k
+// together. Each lane keeps its own column's state of Algorithm 1 (position,
+// horizon row) and of the run skipping (the same tests at the same slices as
+// cast_blocks), so it paints exactly what its column paints alone.
+#if OVERFLIGHT_CAST_X86_64_V4
+#include "raycast/FloatingHorizonCast.inl"
+
+#include <immintrin.h>
+
+#include <bit>
+#include <climits>
+#include <cmath>
+
+// GCC 12's AVX-512 intrinsics fill their unused operands from a
+// self-initialised variable (_mm512_undefined_epi32), which
+// -Wmaybe-uninitialized reports where they are inlined.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+namespace overflight {
+
+namespace {
+
+constexpr int kLanes = 16;
+// Slices ahead of the cast that the lanes' samples are prefetched: the
+// gathers' loads wait on the terrain's lines (far past L2), and the window of
+// out-of-order execution holds only a couple of slices.
+constexpr int kAhead = 8;
+
+// 16 signed 64-bit values split into their high and low 32 bits (a 32.32
+// position's integer part and fraction), and joined back.
+[[gnu::always_inline]] inline void split64(const std::int64_t* v, __m512i& hi, __m512i& lo) {
+    const __m512i a = _mm512_load_si512(v), b = _mm512_load_si512(v + 8);
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    lo = _mm512_permutex2var_epi32(a, even, b);
+    hi = _mm512_permutex2var_epi32(a, _mm512_add_epi32(even, _mm512_set1_epi32(1)), b);
+}
+[[gnu::always_inline]] inline void join64(__m512i hi, __m512i lo, std::int64_t* v) {
+    const __m512i first = _mm512_setr_epi32(0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+    _mm512_store_si512(v, _mm512_permutex2var_epi32(lo, first, hi));
+    _mm512_store_si512(v + 8, _mm512_permutex2var_epi32(lo, _mm512_add_epi32(first, _mm512_set1_epi32(8)), hi));
+}
+
+// The 32.32 positions of 16 lanes as integer parts and fractions, stepped
+// together: the fraction's carry is added to the integer part, so the sums
+// are those of 64-bit steps.
+struct Cursor {
+    __m512i ix, fx, iz, fz;
+    // Positions (gx, gz) plus n steps (sx, sz).
+    [[gnu::always_inline]] void set(const std::int64_t* gx, const std::int64_t* gz, const std::int64_t* sx,
+                                    const std::int64_t* sz, int n) {
+        alignas(64) std::int64_t x[kLanes], z[kLanes];
+        for (int l = 0; l < kLanes; ++l) {
+            x[l] = gx[l] + std::int64_t(n) * sx[l];
+            z[l] = gz[l] + std::int64_t(n) * sz[l];
+        }
+        split64(x, ix, fx);
+        split64(z, iz, fz);
+    }
+    [[gnu::always_inline]] void get(std::int64_t* gx, std::int64_t* gz) const {
+        join64(ix, fx, gx);
+        join64(iz, fz, gz);
+    }
+    [[gnu::always_inline]] void step(const Cursor& s) {
+        const __m512i one = _mm512_set1_epi32(1);
+        fx = _mm512_add_epi32(fx, s.fx);
+        ix = _mm512_mask_add_epi32(_mm512_add_epi32(ix, s.ix), _mm512_cmplt_epu32_mask(fx, s.fx),
+                                   _mm512_add_epi32(ix, s.ix), one);
+        fz = _mm512_add_epi32(fz, s.fz);
+        iz = _mm512_mask_add_epi32(_mm512_add_epi32(iz, s.iz), _mm512_cmplt_epu32_mask(fz, s.fz),
+                                   _mm512_add_epi32(iz, s.iz), one);
+    }
+    // The index of each lane's nearest sample on a grid of `cols` columns.
+    [[gnu::always_inline]] __m512i sample(__m512i cols) const {
+        return _mm512_add_epi32(_mm512_mullo_epi32(iz, cols), ix);
+    }
+};
+
+// A thread's stripes (cast_lanes), grown as needed. Not a std::vector: this
+// file must define no symbol that a baseline build also defines (a template's
+// instance), so that none compiled for x86-64-v4 stands in for it.
+class Stripes {
+public:
+    Stripes() = default;
+    Stripes(const Stripes&) = delete;
+    Stripes& operator=(const Stripes&) = delete;
+    ~Stripes() { delete[] data_; }
+    std::uint32_t* get(std::size_t n) {
+        if (n > size_) {
+            delete[] data_;
+            data_ = nullptr;
+            data_ = new std::uint32_t[n];
+            size_ = n;
+        }
+        return data_;
+    }
+
+private:
+    std::uint32_t* data_ = nullptr;
+    std::size_t size_ = 0;
+};
+
+// A 16 x 16 tile of 32-bit values transposed: v[i] element e becomes v[e] element i.
+[[gnu::always_inline]] inline void transpose16(__m512i* v) {
+    __m512i t[16], u[16];
+    for (int i = 0; i < 16; i += 2) {
+        t[i] = _mm512_unpacklo_epi32(v[i], v[i + 1]);
+        t[i + 1] = _mm512_unpackhi_epi32(v[i], v[i + 1]);
+    }
+    // u[4a + b], 128-bit lane q: element 4q + b of v[4a .. 4a + 3].
+    for (int a = 0; a < 16; a += 4) {
+        u[a] = _mm512_unpacklo_epi64(t[a], t[a + 2]);
+        u[a + 1] = _mm512_unpackhi_epi64(t[a], t[a + 2]);
+        u[a + 2] = _mm512_unpacklo_epi64(t[a + 1], t[a + 3]);
+        u[a + 3] = _mm512_unpackhi_epi64(t[a + 1], t[a + 3]);
+    }
+    for (int b = 0; b < 4; ++b) { // the 128-bit lanes of u[b], u[4 + b], u[8 + b], u[12 + b] transposed
+        const __m512i v0 = _mm512_shuffle_i32x4(u[b], u[4 + b], 0x44), v1 = _mm512_shuffle_i32x4(u[b], u[4 + b], 0xEE);
+        const __m512i v2 = _mm512_shuffle_i32x4(u[8 + b], u[12 + b], 0x44);
+        const __m512i v3 = _mm512_shuffle_i32x4(u[8 + b], u[12 + b], 0xEE);
+        v[b] = _mm512_shuffle_i32x4(v0, v2, 0x88);
+        v[4 + b] = _mm512_shuffle_i32x4(v0, v2, 0xDD);
+        v[8 + b] = _mm512_shuffle_i32x4(v1, v3, 0x88);
+        v[12 + b] = _mm512_shuffle_i32x4(v1, v3, 0xDD);
+    }
+}
+
+// Columns [c0, c1) (at most kLanes) of a block as cast_blocks<kBlock, true>
+// casts them without a light mask, into the block's scratch (color, slice:
+// column c0's entries; row stride kBlock). Lane l samples slice k while its
+// column casts (a run that its tests did not skip): the samples of the lanes
+// are gathered, sigma compared with each lane's horizon as a mask, and for
+// the lanes that rise the first row not below the sample is found at once
+// (RowSearch's guess, checked against the rows on either side), so no lane
+// waits on another's painting. Lane l paints its own stripe (column-major:
+// kPaintRows rows from the horizon up in one store, as the scalar cast does
+// row by row); the stripes are transposed into the block at the end. The
+// tests of run skipping run per lane between slices, at the slices where
+// cast_run makes them, with the same outcome; the lanes all skip: on to the
+// first slice where a test is due.
+long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
+                     std::uint32_t* slice, int* jend) {
+    const Columns& cc = f.columns;
+    const double* slice_d = f.slices.d.data();
+    const double step = f.slices.d.size() > 1 ? slice_d[1] - slice_d[0] : 0.0;
+    const int nrows = f.rows.count;
+    const float* rows = f.rows.m.data();
+    const float* ma = f.slopes.a.data();
+    const float* mb = f.slopes.b.data();
+    const float* smax = f.slopes.smax.data();
+    const int k_end = f.slices.even;
+
+    // Per lane, as BlockRay: the position at the group's slice k, its step,
+    // the run bounds, the last slice, the next slice where a test is due, the
+    // end of the current coarse run, and the horizon row when the current
+    // cast run started.
+    alignas(64) std::int64_t gx[kLanes] = {}, gz[kLanes] = {}, sx[kLanes] = {}, sz[kLanes] = {};
+    alignas(64) int jv[kLanes] = {};
+    alignas(64) float mjv[kLanes] = {};
+    SliceRunBound coarse[kLanes], fine[kLanes];
+    int k1[kLanes] = {}, next[kLanes] = {}, kc[kLanes] = {}, j_before[kLanes] = {};
+    bool hot[kLanes] = {}, casting[kLanes] = {};
+    unsigned live = 0;
+    int k = INT_MAX;
+    for (int l = 0; l < c1 - c0; ++l) {
+        const std::size_t ic = std::size_t(c0 + l);
+        jend[l] = 0;
+        const int k0 = std::max(cc.k0[ic], 0), kl = std::min(cc.k1[ic], k_end);
+        if (k0 >= kl || nrows == 0) continue;
+        const double d0 = slice_d[std::size_t(k0)];
+        gx[l] = std::llround((f.view.eye_gx + d0 * cc.ux[ic] + 0.5) * kFixedOne);
+        gz[l] = std::llround((f.view.eye_gz + d0 * cc.uz[ic] + 0.5) * kFixedOne);
+        sx[l] = std::llround(step * cc.ux[ic] * kFixedOne);
+        sz[l] = std::llround(step * cc.uz[ic] * kFixedOne);
+        coarse[l] = SliceRunBound(t.max_pyramid, f.skip_runs ? kRunCoarse : 0, sx[l], sz[l]);
+        fine[l] = SliceRunBound(t.max_pyramid, f.skip_runs ? kRunFine : 0, sx[l], sz[l]);
+        k1[l] = kl;
+        next[l] = kc[l] = k0;
+        mjv[l] = rows[0];
+        live |= 1u << l;
+        k = std::min(k, k0);
+    }
+    if (live == 0) return 0;
+    for (unsigned m = live; m; m &= m - 1) { // every lane at slice k (exact: integer steps back)
+        const int l = std::countr_zero(m);
+        gx[l] -= std::int64_t(next[l] - k) * sx[l];
+        gz[l] -= std::int64_t(next[l] - k) * sz[l];
+    }
+
+    const std::uint16_t* heights = t.terrain.heights().data();
+    const std::uint32_t* colors = t.colors.data();
+    // A height is read as the 32 bits ending with it (the upper half), so
+    // that the read stays within the array's allocation at its last sample.
+    const void* height_base = reinterpret_cast<const char*>(heights) - 2;
+    const __m512i cols_v = _mm512_set1_epi32(t.terrain.cols());
+    const __m512i one = _mm512_set1_epi32(1);
+    const __m512i nrows_v = _mm512_set1_epi32(nrows);
+    Cursor at, ahead, steps;
+    split64(sx, steps.ix, steps.fx);
+    split64(sz, steps.iz, steps.fz);
+    at.set(gx, gz, sx, sz, 0);
+    ahead.set(gx, gz, sx, sz, kAhead);
+    const std::size_t last_sample = t.terrain.heights().size() - 1;
+    const __m512i last_v = _mm512_set1_epi32(int(last_sample));
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i paint_rows_v = _mm512_set1_epi32(kPaintRows);
+    const __m512 nrows_f = _mm512_set1_ps(float(nrows));
+    const RowSearch search(rows, nrows);
+    const __m512 m0_v = _mm512_set1_ps(search.m0()), inv_step_v = _mm512_set1_ps(search.inv_step());
+    // Each lane paints its own column-major stripe (kPaintRows rows of
+    // padding, whole 16-row tiles), copied to the output at the end.
+    const std::ptrdiff_t stripe = (nrows + kPaintRows + 15) / 16 * 16;
+    thread_local Stripes stripes;
+    std::uint32_t* const stripe_c = stripes.get(std::size_t(2 * kLanes * stripe));
+    std::uint32_t* const stripe_s = stripe_c + kLanes * stripe;
+    __m512i j = _mm512_setzero_si512();
+    __m512 mj = _mm512_load_ps(mjv);
+
+    long long visited = 0;
+    unsigned active = 0; // lanes casting slice k
+    int due = k;         // the first slice where a lane's test is due
+    for (;;) {
+        if (k == due) {
+            at.get(gx, gz);
+            _mm512_store_si512(jv, j);
+            _mm512_store_ps(mjv, mj);
+            for (unsigned m = live; m; m &= m - 1) { // cast_run's decisions, lane by lane
+                const int l = std::countr_zero(m);
+                const unsigned bit = 1u << l;
+                if (next[l] != k) continue;
+                if (casting[l]) {
+                    hot[l] = jv[l] != j_before[l];
+                    casting[l] = false;
+                    active &= ~bit;
+                }
+                if (k == kc[l]) {
+                    if (k >= k1[l] || smax[k] <= mjv[l]) {
+                        jend[l] = jv[l];
+                        live &= ~bit;
+                        continue;
+                    }
+                    if (!hot[l] && coarse[l].usable() && k + kRunCoarse <= k1[l] &&
+                        run_below(ma, mb, k, kRunCoarse, float(coarse[l].max_height(gx[l], gz[l])), mjv[l])) {
+                        next[l] = kc[l] = k + kRunCoarse;
+                        continue;
+                    }
+                    kc[l] = std::min(k + kRunCoarse, k1[l]);
+                }
+                if (!hot[l] && fine[l].usable() && k + kRunFine <= kc[l] &&
+                    run_below(ma, mb, k, kRunFine, float(fine[l].max_height(gx[l], gz[l])), mjv[l])) {
+                    next[l] = k + kRunFine;
+                    continue;
+                }
+                next[l] = std::min(k + kRunFine, kc[l]);
+                casting[l] = true;
+                j_before[l] = jv[l];
+                active |= bit;
+            }
+            if (live == 0) break;
+            due = INT_MAX;
+            for (unsigned m = live; m; m &= m - 1) due = std::min(due, next[std::countr_zero(m)]);
+            if (active == 0) { // every lane skips: on to the first test due
+                at.set(gx, gz, sx, sz, due - k);
+                ahead.set(gx, gz, sx, sz, due - k + kAhead);
+                k = due;
+                continue;
+            }
+        }
+        const __mmask16 act = __mmask16(active);
+        {
+            // Prefetch the samples kAhead slices on of the lanes casting now
+            // (most cast on: a run that paints is followed by one cast
+            // without a test); the others read sample 0.
+            alignas(64) int pv[kLanes];
+            _mm512_store_si512(pv, _mm512_maskz_min_epu32(__mmask16(active), ahead.sample(cols_v), last_v));
+            for (int l = 0; l < kLanes; ++l) {
+                _mm_prefetch(reinterpret_cast<const char*>(heights + pv[l]), _MM_HINT_T0);
+                _mm_prefetch(reinterpret_cast<const char*>(colors + pv[l]), _MM_HINT_T0);
+            }
+        }
+        const __m512i ci = at.sample(cols_v);
+        const __m512i raw = _mm512_srli_epi32(
+            _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), act, ci, height_base, 2), 16);
+        const __m512i word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), act, ci, colors, 4);
+        const __m512 sigma = _mm512_add_ps(_mm512_mul_ps(_mm512_cvtepi32_ps(raw), _mm512_set1_ps(ma[k])),
+                                           _mm512_set1_ps(mb[k]));
+        const __mmask16 up = _mm512_mask_cmp_ps_mask(act, sigma, mj, _CMP_GT_OQ);
+        if (up) {
+            // The first row not below each rising sample (RowSearch): its
+            // guess from the table's ends, checked against the rows on either
+            // side; rows[nrows] = +inf stops the search.
+            const __m512 t_guess = _mm512_min_ps(
+                _mm512_max_ps(_mm512_mul_ps(_mm512_sub_ps(sigma, m0_v), inv_step_v), _mm512_set1_ps(-1.0f)), nrows_f);
+            __m512i top = _mm512_min_epi32(_mm512_cvttps_epi32(_mm512_add_ps(t_guess, _mm512_set1_ps(1.0f))), nrows_v);
+            const __m512 below_top = _mm512_mask_i32gather_ps(_mm512_set1_ps(-INFINITY),
+                                                              _mm512_mask_cmpgt_epi32_mask(up, top, zero), 
+                                                              _mm512_sub_epi32(top, one), rows, 4);
+            __m512 at_top = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), up, top, rows, 4);
+            const __mmask16 off = _mm512_mask_cmp_ps_mask(up, below_top, sigma, _CMP_GE_OQ) |
+                                  _mm512_mask_cmp_ps_mask(up, at_top, sigma, _CMP_LT_OQ);
+            if (off) [[unlikely]] { // a guess off by a row or more
+                alignas(64) int tv[kLanes];
+                alignas(64) float sv[kLanes], av[kLanes];
+                _mm512_store_si512(tv, top);
+                _mm512_store_ps(sv, sigma);
+                _mm512_store_ps(av, at_top);
+                for (unsigned m = off; m; m &= m - 1) {
+                    const int l = std::countr_zero(m);
+                    tv[l] = search.first_not_below(sv[l], tv[l]);
+                    av[l] = rows[tv[l]];
+                }
+                top = _mm512_load_si512(tv);
+                at_top = _mm512_load_ps(av);
+            }
+            // Paint rows [j, top) (lines 10-14): kPaintRows from the horizon
+            // up in every lane's stripe, painted or not (the rows a lane does
+            // not reach are painted again or lie above its column's top), the
+            // rest for the rare taller spans.
+            alignas(64) int jv_now[kLanes];
+            alignas(64) std::uint32_t wv[kLanes];
+            _mm512_store_si512(jv_now, j);
+            _mm512_store_si512(wv, word);
+            const __m128i kv = _mm_set1_epi32(k);
+            for (int l = 0; l < kLanes; ++l) {
+                const std::ptrdiff_t p = std::ptrdiff_t(l) * stripe + jv_now[l];
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_c + p), _mm_set1_epi32(int(wv[l])));
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_s + p), kv);
+            }
+            if (const unsigned tall = _mm512_mask_cmpgt_epi32_mask(up, _mm512_sub_epi32(top, j), paint_rows_v))
+                [[unlikely]] {
+                alignas(64) int tv[kLanes];
+                _mm512_store_si512(tv, top);
+                for (unsigned m = tall; m; m &= m - 1) {
+                    const int l = std::countr_zero(m);
+                    for (int r = jv_now[l] + kPaintRows; r < tv[l]; ++r) {
+                        stripe_c[std::ptrdiff_t(l) * stripe + r] = wv[l];
+                        stripe_s[std::ptrdiff_t(l) * stripe + r] = std::uint32_t(k);
+                    }
+                }
+            }
+            j = _mm512_mask_mov_epi32(j, up, top);
+            mj = _mm512_mask_mov_ps(mj, up, at_top);
+            if (const unsigned full = _mm512_mask_cmpeq_epi32_mask(act, j, nrows_v)) [[unlikely]] {
+                // Columns full: done after this slice.
+                for (unsigned m = full; m; m &= m - 1) jend[std::countr_zero(m)] = nrows;
+                live &= ~full;
+                active &= ~full;
+                visited += std::popcount(full);
+                if (live == 0) break;
+                due = INT_MAX;
+                for (unsigned m = live; m; m &= m - 1) due = std::min(due, next[std::countr_zero(m)]);
+            }
+        }
+        visited += std::popcount(active);
+        at.step(steps);
+        ahead.step(steps);
+        ++k;
+        if (active == 0 && k < due) { // the lanes that cast are done: on to the first test due
+            at.get(gx, gz);
+            at.set(gx, gz, sx, sz, due - k);
+            ahead.set(gx, gz, sx, sz, due - k + kAhead);
+            k = due;
+        }
+    }
+    // The stripes to the block's rows [0, jend) of each column, 16 x 16 tiles transposed.
+    int top = 0;
+    for (int l = 0; l < c1 - c0; ++l) top = std::max(top, jend[l]);
+    const __mmask16 lanes = __mmask16((1u << (c1 - c0)) - 1);
+    for (int r0 = 0; r0 < top; r0 += 16)
+        for (int which = 0; which < 2; ++which) {
+            const std::uint32_t* from = (which == 0 ? stripe_c : stripe_s) + r0;
+            std::uint32_t* to = (which == 0 ? color : slice) + std::ptrdiff_t(r0) * kBlock;
+            __m512i v[16];
+            for (int l = 0; l < 16; ++l) v[l] = _mm512_loadu_si512(from + l * stripe);
+            transpose16(v);
+            for (int r = 0; r < std::min(16, top - r0); ++r) _mm512_mask_storeu_epi32(to + r * kBlock, lanes, v[r]);
+        }
+    return visited;
+}
+
+// cast_columns_body's kernel for the evenly spaced slices of level 0: the
+// lanes for the shear camera's evenly spaced rows (where RowSearch's guess is
+// within a row) without a light mask, on a grid of fewer than 2^31 samples;
+// cast_blocks elsewhere.
+struct LaneColumns {
+    template <std::ptrdiff_t kStride, bool kEvenRows>
+    static long long cast(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
+                          std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride) {
+        const double samples = double(t.terrain.cols()) * double(t.terrain.rows());
+        if (!kEvenRows || t.other_colors || col_stride != 1 || samples >= 0x1p31)
+            return cast_blocks<kStride, kEvenRows>(t, f, c0, c1, color, slice, jend, col_stride);
+        long long visited = 0;
+        for (int g = c0; g < c1; g += kLanes)
+            visited += cast_lanes(t, f, g, std::min(g + kLanes, c1), color + (g - c0), slice + (g - c0),
+                                  jend + (g - c0));
+        return visited;
+    }
+};
+
+} // namespace
+
+long long cast_columns_x86_64_v4(const CastTerrain& terrain, const CastFrame& frame, SurfaceModel surface, int c0,
+                                 int c1, std::uint32_t* color, std::uint32_t* slice, int* jend,
+                                 std::ptrdiff_t col_stride, std::ptrdiff_t row_stride) {
+    return cast_columns_body<LaneColumns>(terrain, frame, surface, c0, c1, color, slice, jend, col_stride,
+                                          row_stride);
+}
+
+} // namespace overflight
+#endif
