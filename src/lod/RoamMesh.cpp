@@ -27,6 +27,12 @@ const std::uint32_t kLeastKey = bit_cast<std::uint32_t>(kLeastError) >> 16;
 // before they are needed lets the misses overlap.
 inline void prefetch(const void* p) { __builtin_prefetch(p); }
 
+// Software pipeline over the top bucket (RoamMesh::prefetch_ahead): the
+// stack depths below the top at which a queued node, then what its split
+// reads of its own, then its base neighbour's share are requested. Each stage
+// reads only lines the previous stage asked for a few splits earlier.
+constexpr std::size_t kNodeAhead = 10, kOwnAhead = 6, kMidAhead = 3;
+
 } // namespace
 
 int roam_bucket(float error_px) {
@@ -226,6 +232,38 @@ void RoamMesh::prefetch_split(std::int32_t t, const Node& n) const {
     if (stored) prefetch(variance_.data() + 2 * b.var_node());
 }
 
+void RoamMesh::prefetch_ahead(const std::vector<std::int32_t>& bucket) const {
+    const std::size_t n = bucket.size();
+    if (n > kNodeAhead) prefetch(&nodes_[std::size_t(bucket[n - 1 - kNodeAhead])]);
+    if (n > kOwnAhead) {
+        const std::int32_t t = bucket[n - 1 - kOwnAhead];
+        const Node& N = nodes_[std::size_t(t)];
+        prefetch(&children_[std::size_t(t)]);
+        for (const std::int32_t x : N.nb)
+            if (x >= 0) prefetch(&nodes_[std::size_t(x)]);
+        for (const std::uint32_t v : N.v) prefetch(&vertices_[v]);
+        if (int(N.level()) < variance_.stored_depth()) prefetch(variance_.data() + 2 * N.var_node());
+    }
+    if (n > kMidAhead) {
+        const std::int32_t t = bucket[n - 1 - kMidAhead];
+        const Node& N = nodes_[std::size_t(t)];
+        const Vertex& v0 = vertices_[N.v[1]];
+        const Vertex& v1 = vertices_[N.v[2]];
+        prefetch(&heights_[std::size_t((v0.row + v1.row) / 2) * std::size_t(size_) + std::size_t((v0.col + v1.col) / 2)]);
+        if (N.nb[1] >= 0) {
+            const Node& B = nodes_[std::size_t(N.nb[1])];
+            if (B.nb[1] == t) {
+                if (B.nb[0] >= 0) prefetch(&nodes_[std::size_t(B.nb[0])]);
+                if (B.nb[2] >= 0) prefetch(&nodes_[std::size_t(B.nb[2])]);
+                prefetch(&vertices_[B.v[0]]);
+                prefetch(&children_[std::size_t(N.nb[1])]);
+                if (int(B.level()) < variance_.stored_depth()) prefetch(variance_.data() + 2 * B.var_node());
+            }
+        }
+    }
+    if (n > 0) prefetch(&nodes_[std::size_t(bucket.back())]);
+}
+
 void RoamMesh::make_children(std::int32_t t, std::int32_t c, std::uint32_t m, std::int32_t across) {
     // Fields of T are read one by one and new nodes written field by field,
     // never copied whole: a load of a word after narrower stores into it
@@ -349,7 +387,7 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
         auto& bucket = buckets_[std::size_t(max_bucket_)];
         const std::int32_t t = bucket.back();
         bucket.pop_back();
-        if (!bucket.empty()) prefetch(&nodes_[std::size_t(bucket.back())]); // the likely next pop
+        prefetch_ahead(bucket);
         if (nodes_[std::size_t(t)].flags() & kSplit) continue; // split by force since it was queued
         if (count_ + chain_bound > budget && count_ + chain_cost(t) > budget) continue; // set aside
         split(t, false);

@@ -42,7 +42,8 @@
 // links in the nodes (a bucket is a stack, a node split by force is dropped
 // when popped); the view wedge is tested once per vertex (outcodes) instead
 // of once per triangle; the cost of a forced-split chain is only worked out
-// within reach of the budget.
+// within reach of the budget; the nodes next in line in the top bucket, and
+// what their splits will read, are prefetched several splits ahead.
 #include "core/Camera.h"
 #include "core/MeshArrays.h"
 #include "core/Parallel.h"
@@ -167,6 +168,13 @@ private:
     void make_children(std::int32_t t, std::int32_t c, std::uint32_t m, std::int32_t across);
     void enqueue(std::int32_t t, const Node& n);
     void prefetch_split(std::int32_t t, const Node& n) const;
+    // Called at each pop: the top bucket is drained LIFO and the children of
+    // a split mostly land in lower buckets, so the nodes a few places below
+    // its top are the next ones split. Their nodes, neighbours, vertices,
+    // child bounds, midpoint heights and base neighbours' share are requested
+    // in stages, several splits before they are needed, so that their misses
+    // overlap with the splits in between instead of stalling each split.
+    void prefetch_ahead(const std::vector<std::int32_t>& bucket) const;
     Rc rc(std::uint32_t vid) const { return {vertices_[vid].row, vertices_[vid].col}; }
     // Terrain::sample_normal (x, z in 1/32767) and color of one grid sample.
     struct SampleAttributes {
