@@ -125,7 +125,7 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
             _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(row, c3), 2), _mm256_and_si256(col, c3)));
         const __m256i idx = _mm256_add_epi32(pick(lv.first, lvl, upper, any_upper),
                                              _mm256_or_si256(_mm256_slli_epi32(page, 10), in_page));
-        // Unpainted lanes fetch nothing (their pixels stay as they are).
+        // Unpainted lanes' texels are not used (their pixels stay as they are).
         const __m256i albedo = Lookup::words(texels, idx, painted);
         // modulate_light.
         std::uint32_t* out = color + std::size_t(j) * kShearBlock + i;
