@@ -15,6 +15,7 @@
 #include "raycast/Atmosphere.h"
 #include "raycast/FloatingHorizon.h"
 #include "raycast/FloatingHorizonLiteral.h"
+#include "raycast/ShearResolve.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -157,6 +158,24 @@ void BM_VoxelNoSkipV3(benchmark::State& s) {
     o.kernel = CastKernel::X86_64_v3;
     run_fast(s, Projection::Shear, o);
 }
+// The AVX2 resolve and drape reading their tables with gathers and with
+// scalar loads (ResolveKernel::Avx2, Avx2Loads: raycast/LaneLookup.h), plain
+// and with every look (the imagery's drape); Auto (BM_Voxel,
+// BM_VoxelAllLooks) drapes with the loads where gathers are slow and runs
+// the AVX-512 kernels where the CPU has them.
+void run_resolve(benchmark::State& s, ResolveKernel kernel, bool all_looks) {
+    if (!resolve_kernel_available(kernel)) {
+        s.SkipWithError("no AVX2 on this CPU");
+        return;
+    }
+    RaycastOptions o;
+    o.resolve = kernel;
+    run_fast(s, Projection::Shear, o, all_looks, all_looks, all_looks);
+}
+void BM_VoxelGathers(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2, false); }
+void BM_VoxelLoads(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2Loads, false); }
+void BM_VoxelAllLooksGathers(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2, true); }
+void BM_VoxelAllLooksLoads(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2Loads, true); }
 void BM_VoxelBilinear(benchmark::State& s) {
     RaycastOptions o;
     o.surface = SurfaceModel::Bilinear;
@@ -204,6 +223,10 @@ BENCHMARK(BM_AerialTables)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelNoSkip)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelV3)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelNoSkipV3)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelGathers)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelLoads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelAllLooksGathers)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelAllLooksLoads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelLod)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelNearStep)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

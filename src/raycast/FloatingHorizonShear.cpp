@@ -24,8 +24,8 @@ namespace {
 // Multiplies the light painted into a block by the imagery under each
 // painted pixel (ImageryTexels.h: drape_column, row by row: ShearDrape.h);
 // column i's plane runs along F + a_i R, F and R horizontal for the shear camera.
-void apply_imagery(const FloatingHorizonState& s, const Camera& camera, int c0, const ShearBlock& blk,
-                   std::uint32_t* color, const std::uint32_t* slice) {
+void apply_imagery(const FloatingHorizonState& s, const Camera& camera, const RaycastOptions& options, int c0,
+                   const ShearBlock& blk, std::uint32_t* color, const std::uint32_t* slice) {
     const glm::dvec3 F = camera.forward(), R = camera.right();
     DrapeFrame frame{&s.imagery, s.frame.slices.df.data(), s.frame.slices.df[0], s.frame.rows.m.data(),
                      float(camera.eye.x), float(camera.eye.z)};
@@ -39,7 +39,7 @@ void apply_imagery(const FloatingHorizonState& s, const Camera& camera, int c0, 
         dir_x[i] = float(F.x + a * R.x);
         dir_z[i] = float(F.z + a * R.z);
     }
-    drape_shear_block(frame, dir_x, dir_z, blk.n, blk.jend, color, slice);
+    drape_shear_block(frame, dir_x, dir_z, blk.n, blk.jend, color, slice, options.resolve);
 }
 
 // Casts and resolves the blocks of kShearBlock columns in parallel: a block
@@ -91,10 +91,10 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
             blk.jend[i] = i < blk.n ? sc.jend[std::size_t(i)] : 0;
             blk.sun_dot[i] = float(f_sun + a * r_sun);
         }
-        if (s.imagery.bound()) apply_imagery(s, camera, c0, blk, sc.color.data(), sc.slice.data());
+        if (s.imagery.bound()) apply_imagery(s, camera, options, c0, blk, sc.color.data(), sc.slice.data());
         const auto tr = Clock::now();
         resolve_shear_block(tables, blk, H, sc.color.data(), sc.slice.data(), color.pixels.data() + c0,
-                            depth.pixels.data() + c0, std::size_t(W));
+                            depth.pixels.data() + c0, std::size_t(W), options.resolve);
         const auto te = Clock::now();
         cast_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(tr - tc).count();
         resolve_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(te - tr).count();

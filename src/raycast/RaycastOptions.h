@@ -26,6 +26,12 @@ enum class TiltMethod { Exact, Guedes };
 // are for tests and measurements, when cast_kernel_available()).
 enum class CastKernel { Auto, Portable, X86_64_v3, X86_64_v4 };
 
+// The kernel of the shear camera's resolve and imagery drape
+// (raycast/ShearResolve.h, ShearDrape.h; all give the same bits). Auto picks
+// the fastest the CPU runs; the others are for tests and measurements, when
+// resolve_kernel_available().
+enum class ResolveKernel { Auto, Portable, Avx2, Avx2Loads, Avx512, Simd128 };
+
 const char* to_string(SurfaceModel s);
 const char* to_string(TiltMethod t);
 // Parse a name ("blocks", "bilinear", "exact", "guedes"); throw Error(option, ...) otherwise.
@@ -50,6 +56,7 @@ struct RaycastOptions {
     // such runs paint nothing; off only to measure or test that.
     bool skip_runs = true;
     CastKernel kernel = CastKernel::Auto;
+    ResolveKernel resolve = ResolveKernel::Auto;
 };
 
 // What one frame cost, for --stats and `overflight bench`.

@@ -12,6 +12,9 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
 #pragma GCC diagnostic pop
+
+#include "core/CpuFeatures.h"
+#include "raycast/LaneLookup.h"
 #endif
 
 namespace overflight {
@@ -37,7 +40,9 @@ __attribute__((target("avx2"))) inline __m256 pick(const float* table, __m256i l
 
 // Lanes [i, i + 8) of a block: drape_pixel lane by lane (DrapeRun's slope of
 // the run's top row found on the way down), modulate_light with 16-bit
-// multiplies (each channel's l a + 64 fits: 255 x 255 + 64 < 2^16).
+// multiplies (each channel's l a + 64 fits: 255 x 255 + 64 < 2^16). The
+// slice tables and texels are read through Lookup (LaneLookup.h).
+template <class Lookup>
 __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const float* dir_x, const float* dir_z,
                                                       const int* jend, int i, std::uint32_t* color,
                                                       const std::uint32_t* slice) {
@@ -48,7 +53,7 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
     const ImageryTexels::LevelLanes& lv = im.level_lanes();
     const float* slog = im.slice_log2();
     const float* rlog = im.row_log2();
-    const int* texels = reinterpret_cast<const int*>(im.texels());
+    const Rgba8* texels = im.texels();
     const __m256i jendv = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(jend + i));
     const __m256 dx = _mm256_loadu_ps(dir_x + i), dz = _mm256_loadu_ps(dir_z + i);
     const __m256 eye_x = _mm256_set1_ps(f.eye_x), eye_z = _mm256_set1_ps(f.eye_z);
@@ -82,10 +87,10 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
         m_top = _mm256_blendv_ps(m_top, m, _mm256_castsi256_ps(top));
         prev = k;
         if (_mm256_movemask_epi8(same) != -1) {
-            dk = _mm256_i32gather_ps(f.slice_d, k, 4);
-            d_prev = _mm256_blendv_ps(_mm256_i32gather_ps(f.slice_d, _mm256_max_epi32(_mm256_sub_epi32(k, one), zero), 4),
+            dk = Lookup::floats(f.slice_d, k);
+            d_prev = _mm256_blendv_ps(Lookup::floats(f.slice_d, _mm256_max_epi32(_mm256_sub_epi32(k, one), zero)),
                                       d_before, _mm256_castsi256_ps(_mm256_cmpeq_epi32(k, zero)));
-            sl = _mm256_i32gather_ps(slog, k, 4);
+            sl = Lookup::floats(slog, k);
         }
         __m256 d = dk;
         if (mj < 0.0f) {
@@ -120,8 +125,8 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
             _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(row, c3), 2), _mm256_and_si256(col, c3)));
         const __m256i idx = _mm256_add_epi32(pick(lv.first, lvl, upper, any_upper),
                                              _mm256_or_si256(_mm256_slli_epi32(page, 10), in_page));
-        // Unpainted lanes fetch nothing (their pixels stay as they are).
-        const __m256i albedo = _mm256_mask_i32gather_epi32(zero, texels, idx, painted, 4);
+        // Unpainted lanes' texels are not used (their pixels stay as they are).
+        const __m256i albedo = Lookup::words(texels, idx, painted);
         // modulate_light.
         std::uint32_t* out = color + std::size_t(j) * kShearBlock + i;
         const __m256i light = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(out));
@@ -239,8 +244,9 @@ void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir
                        std::uint32_t* color, const std::uint32_t* slice, ResolveKernel kernel) {
 #if OVERFLIGHT_DRAPE_AVX2
     static const ResolveKernel fastest = resolve_kernel_available(ResolveKernel::Avx512) ? ResolveKernel::Avx512
-                                         : resolve_kernel_available(ResolveKernel::Avx2) ? ResolveKernel::Avx2
-                                                                                          : ResolveKernel::Portable;
+                                         : !resolve_kernel_available(ResolveKernel::Avx2) ? ResolveKernel::Portable
+                                         : cpu_gathers_slow()                              ? ResolveKernel::Avx2Loads
+                                                                                           : ResolveKernel::Avx2;
     if (kernel == ResolveKernel::Auto) kernel = fastest;
     // Imagery of 2^31 texels and more or of more than 16 levels goes the portable way.
     if (kernel != ResolveKernel::Portable && f.imagery->lane_tables()) {
@@ -256,8 +262,10 @@ void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir
             for (int i = 0; i < kShearBlock; i += 16)
                 if (f.d_step > 0.0f) drape_lanes_avx512<true>(f, dxs, dzs, ends, i, color, slice);
                 else drape_lanes_avx512<false>(f, dxs, dzs, ends, i, color, slice);
+        else if (kernel == ResolveKernel::Avx2Loads)
+            for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2<LoadLookup>(f, dxs, dzs, ends, i, color, slice);
         else
-            for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2(f, dxs, dzs, ends, i, color, slice);
+            for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2<GatherLookup>(f, dxs, dzs, ends, i, color, slice);
         return;
     }
 #endif

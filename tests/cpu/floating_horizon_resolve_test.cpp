@@ -41,7 +41,7 @@ ShearBlock block(int n, const std::vector<int>& jend, const std::vector<float>& 
 // The kernels other than the portable one that this CPU runs.
 std::vector<ResolveKernel> fast_kernels() {
     std::vector<ResolveKernel> out;
-    for (ResolveKernel k : {ResolveKernel::Avx2, ResolveKernel::Avx512})
+    for (ResolveKernel k : {ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx512})
         if (resolve_kernel_available(k)) out.push_back(k);
     return out;
 }
@@ -66,7 +66,7 @@ TEST(ShearResolve, HandWorkedBlock) {
     const ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0xFFFFFFu, sky.entries()};
     const int H = 3, W = 5;
     const Rgb8 a{10, 20, 30}, b{40, 50, 60}, c{70, 80, 90}, e{1, 2, 3};
-    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2}) {
+    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(H);
         s.set(0, 0, pack_rgb(a), 0);
@@ -121,7 +121,7 @@ TEST(ShearResolve, FogAtTheEyeDistanceOfThePixel) {
     const ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, fog_color, sky.entries()};
     const std::uint32_t expected = fog_blend(surface, fog_color, fog.weight(125.0f));
     EXPECT_NE(expected, surface);
-    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2}) {
+    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(1);
         s.set(0, 0, surface, 0);
@@ -159,7 +159,7 @@ TEST(ShearResolve, AerialPerspectiveAtThePixel) {
     t.sun_y = 0.8f;
     const std::uint32_t expected = air.terrain(surface, 125.0f, 75.0f, 0.96f);
     EXPECT_NE(expected, surface);
-    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2}) {
+    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(2);
         s.set(1, 0, surface, 0);
