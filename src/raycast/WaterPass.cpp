@@ -27,13 +27,29 @@ glm::vec3 unit_rgb(Rgb8 c) { return glm::vec3(c.r, c.g, c.b) / 255.0f; }
 // fraction of the work per pixel.
 struct Unprojection {
     std::vector<glm::dvec4> columns; // m0 nx per column
+    glm::dvec4 m1;                    // the row term's column
     glm::dvec4 near_plane, far_plane; // m2 z + m3 w at z = -1 and 1 (w = 1)
+    int height = 0;
 
-    Unprojection(const glm::dmat4& m, int width) {
-        columns.resize(std::size_t(width));
-        for (int col = 0; col < width; ++col) columns[std::size_t(col)] = m[0] * ((col + 0.5) / width * 2.0 - 1.0);
+    // The ray through a pixel: m0 nx + m1 ny, and its points on the near
+    // and far planes.
+    struct PixelRay {
+        glm::dvec4 xy;
+        glm::dvec3 a, b;
+    };
+
+    Unprojection(const glm::dmat4& m, const Camera& camera) : m1(m[1]), height(camera.height) {
+        columns.resize(std::size_t(camera.width));
+        for (int col = 0; col < camera.width; ++col)
+            columns[std::size_t(col)] = m[0] * ((col + 0.5) / camera.width * 2.0 - 1.0);
         near_plane = m[2] * -1.0 + m[3] * 1.0;
         far_plane = m[2] * 1.0 + m[3] * 1.0;
+    }
+    glm::dvec4 row_term(int row) const { return m1 * (1.0 - (row + 0.5) / height * 2.0); }
+    PixelRay ray(int col, const glm::dvec4& row) const {
+        const glm::dvec4 xy = columns[std::size_t(col)] + row;
+        const glm::dvec4 an = xy + near_plane, bn = xy + far_plane;
+        return {xy, glm::dvec3(an) / an.w, glm::dvec3(bn) / bn.w};
     }
 };
 
@@ -61,15 +77,13 @@ long long WaterPass::apply(const Camera& camera, const Environment& env, Surface
     const RayMarcher::Frame frame = marcher.frame(camera);
     const double level = env.water_level;
     const double top = top_;
-    const Unprojection pixels(frame.inverse_view_projection, camera.width);
+    const Unprojection pixels(frame.inverse_view_projection, camera);
     std::atomic<long long> flooded{0};
     parallel::for_each_index(0, camera.height, [&](int row) {
         long long n = 0;
-        const glm::dvec4 row_term = frame.inverse_view_projection[1] * (1.0 - (row + 0.5) / camera.height * 2.0);
+        const glm::dvec4 row_term = pixels.row_term(row);
         for (int col = 0; col < camera.width; ++col) {
-            const glm::dvec4 ray = pixels.columns[std::size_t(col)] + row_term;
-            const glm::dvec4 an = ray + pixels.near_plane, bn = ray + pixels.far_plane;
-            const glm::dvec3 a = glm::dvec3(an) / an.w, b = glm::dvec3(bn) / bn.w;
+            const auto [ray, a, b] = pixels.ray(col, row_term);
             const glm::dvec3 d = b - a;
             if (!(d.y < 0.0)) continue;
             const double s = (level - a.y) / d.y;
@@ -113,17 +127,15 @@ long long WaterPass::apply_under(const Camera& camera, const Environment& env, S
     RayMarcher marcher(t, env);
     const RayMarcher::Frame frame = marcher.frame(camera);
     const double level = env.water_level;
-    const Unprojection pixels(frame.inverse_view_projection, camera.width);
+    const Unprojection pixels(frame.inverse_view_projection, camera);
     const glm::dvec4 m2 = frame.inverse_view_projection[2], m3 = frame.inverse_view_projection[3];
     const Rgb8 deep = to_rgb8(glm::clamp(water_deep_light(env), 0.0f, 1.0f));
     std::atomic<long long> surface{0};
     parallel::for_each_index(0, camera.height, [&](int row) {
         long long n = 0;
-        const glm::dvec4 row_term = frame.inverse_view_projection[1] * (1.0 - (row + 0.5) / camera.height * 2.0);
+        const glm::dvec4 row_term = pixels.row_term(row);
         for (int col = 0; col < camera.width; ++col) {
-            const glm::dvec4 ray = pixels.columns[std::size_t(col)] + row_term;
-            const glm::dvec4 an = ray + pixels.near_plane, bn = ray + pixels.far_plane;
-            const glm::dvec3 a = glm::dvec3(an) / an.w, b = glm::dvec3(bn) / bn.w;
+            const auto [ray, a, b] = pixels.ray(col, row_term);
             const glm::dvec3 d = b - a;
             float& behind = depth.at(col, row);
             Rgb8& pixel = color.at(col, row);
