@@ -153,83 +153,55 @@ TEST(InfoCliErrors, DirectoryWithoutMap) {
     expect_one_line_error("info '" + dir.path.string() + "'", dir.path.string(), "without a `map`");
 }
 
-TEST(InfoCliErrors, MapSyntaxError) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    write_text(set + "/map", "h_scale = 1\nv_scale = [1,\n");
-    expect_one_line_error("info '" + set + "'", set + "/map", "line ");
+// A valid data set broken one way: the file that breaks (relative to the set),
+// how, and the words its one-line error must hold.
+struct BrokenDataSet {
+    const char* name;
+    const char* file;
+    void (*breaks)(const std::string& path);
+    const char* words;
+};
+
+void truncate_by_3(const std::string& path) {
+    std::filesystem::resize_file(path, std::filesystem::file_size(path) - 3);
 }
 
-TEST(InfoCliErrors, MapMissingKey) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    write_text(set + "/map", "h_scale = 1\n");
-    expect_one_line_error("info '" + set + "'", set + "/map", "missing key v_scale");
-}
-
-TEST(InfoCliErrors, MapWrongTypedKey) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    write_text(set + "/map", "h_scale = 1\nv_scale = \"x\"\n");
-    expect_one_line_error("info '" + set + "'", set + "/map", "line 2: v_scale must be a number");
-}
-
-TEST(InfoCliErrors, PgmMissing) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    std::filesystem::remove(set + "/hf.pgm");
-    expect_one_line_error("info '" + set + "'", set + "/hf.pgm", "no such file");
-}
-
-TEST(InfoCliErrors, PgmTruncated) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    std::filesystem::resize_file(set + "/hf.pgm", std::filesystem::file_size(set + "/hf.pgm") - 3);
-    expect_one_line_error("info '" + set + "'", set + "/hf.pgm", "truncated");
-}
-
-TEST(InfoCliErrors, PgmWrongMagic) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    write_text(set + "/hf.pgm", "P2\n3 3\n255\n0 1 2 3 4 5 6 7 8\n");
-    expect_one_line_error("info '" + set + "'", set + "/hf.pgm", "magic");
-}
-
-TEST(InfoCliErrors, PgmMaxvalZero) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    write_text(set + "/hf.pgm", std::string("P5\n3 3\n0\n") + std::string(9, '\0'));
-    expect_one_line_error("info '" + set + "'", set + "/hf.pgm", "maxval 0");
-}
-
-TEST(InfoCliErrors, PgmMaxvalTooLarge) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    write_text(set + "/hf.pgm", std::string("P5\n3 3\n70000\n") + std::string(18, '\0'));
-    expect_one_line_error("info '" + set + "'", set + "/hf.pgm", "maxval 70000");
-}
-
-TEST(InfoCliErrors, PgmZeroSize) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    write_text(set + "/hf.pgm", "P5\n0 0\n255\n");
-    expect_one_line_error("info '" + set + "'", set + "/hf.pgm", "size 0x0");
-}
-
-TEST(InfoCliErrors, PgmAbsurdSize) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
-    write_text(set + "/hf.pgm", "P5\n100000 3\n65535\n");
-    expect_one_line_error("info '" + set + "'", set + "/hf.pgm", "size 100000x3");
-}
-
-TEST(InfoCliErrors, PpmSizeNotMatchingPgm) {
-    ScratchDir dir;
-    const std::string set = make_data_set(dir);
+const BrokenDataSet kBrokenDataSets[] = {
+    {"MapSyntaxError", "map", [](const std::string& f) { write_text(f, "h_scale = 1\nv_scale = [1,\n"); }, "line "},
+    {"MapMissingKey", "map", [](const std::string& f) { write_text(f, "h_scale = 1\n"); }, "missing key v_scale"},
+    {"MapWrongTypedKey", "map", [](const std::string& f) { write_text(f, "h_scale = 1\nv_scale = \"x\"\n"); },
+     "line 2: v_scale must be a number"},
+    {"PgmMissing", "hf.pgm", [](const std::string& f) { std::filesystem::remove(f); }, "no such file"},
+    {"PgmTruncated", "hf.pgm", truncate_by_3, "truncated"},
+    {"PgmWrongMagic", "hf.pgm", [](const std::string& f) { write_text(f, "P2\n3 3\n255\n0 1 2 3 4 5 6 7 8\n"); },
+     "magic"},
+    {"PgmMaxvalZero", "hf.pgm",
+     [](const std::string& f) { write_text(f, std::string("P5\n3 3\n0\n") + std::string(9, '\0')); }, "maxval 0"},
+    {"PgmMaxvalTooLarge", "hf.pgm",
+     [](const std::string& f) { write_text(f, std::string("P5\n3 3\n70000\n") + std::string(18, '\0')); },
+     "maxval 70000"},
+    {"PgmZeroSize", "hf.pgm", [](const std::string& f) { write_text(f, "P5\n0 0\n255\n"); }, "size 0x0"},
+    {"PgmAbsurdSize", "hf.pgm", [](const std::string& f) { write_text(f, "P5\n100000 3\n65535\n"); },
+     "size 100000x3"},
     // Wider than the grid but shorter: neither per cell, per sample, nor imagery over the grid.
-    write_ppm(set + "/color.ppm", ColorImage(5, 1));
-    expect_one_line_error("info '" + set + "'", set + "/color.ppm", "matches neither");
+    {"PpmSizeNotMatchingPgm", "color.ppm", [](const std::string& f) { write_ppm(f, ColorImage(5, 1)); },
+     "matches neither"},
+};
+
+void PrintTo(const BrokenDataSet& b, std::ostream* os) { *os << b.name; }
+
+class InfoCliBrokenDataSet : public testing::TestWithParam<BrokenDataSet> {};
+
+TEST_P(InfoCliBrokenDataSet, FailsWithOneLineNamingTheFile) {
+    ScratchDir dir;
+    const std::string set = make_data_set(dir);
+    const std::string file = set + "/" + GetParam().file;
+    GetParam().breaks(file);
+    expect_one_line_error("info '" + set + "'", file, GetParam().words);
 }
+
+INSTANTIATE_TEST_SUITE_P(InfoCliErrors, InfoCliBrokenDataSet, testing::ValuesIn(kBrokenDataSets),
+                         [](const testing::TestParamInfo<BrokenDataSet>& p) { return p.param.name; });
 
 TEST(InfoCliErrors, BadDemoSize) {
     const test::RunResult r = run_overflight("info demo --demo-size 100");
