@@ -49,38 +49,53 @@ ColorImage render(const DataSet& d, gl::HeadlessRenderer& r, const char* method,
     return color;
 }
 
-void expect_box_shadow(const char* method) {
-    const DataSet d = box_scene();
-    gl::HeadlessRenderer r(d.terrain, d.scene);
-    Camera cam; // looking north and down at the box from the south-east
+// Looking north and down from the south-east at the box (and where the
+// vehicle is placed beside it).
+Camera south_east_camera(int width, int height) {
+    Camera cam;
     cam.eye = {32, 40, 72};
     cam.heading = 180;
     cam.pitch = -45;
-    cam.width = 320;
-    cam.height = 240;
+    cam.width = width;
+    cam.height = height;
     cam.near = 1;
     cam.far = 300;
+    return cam;
+}
+
+// The pixel where the ground point (x, 0, z) is seen (it must be in view).
+Rgb8 ground_pixel(const ColorImage& img, const Camera& cam, double x, double z) {
+    const auto p = cam.project({x, 0, z});
+    EXPECT_TRUE(p.col >= 0 && p.col < cam.width && p.row >= 0 && p.row < cam.height) << x << "," << z;
+    return img.at(std::clamp(int(p.col), 0, cam.width - 1), std::clamp(int(p.row), 0, cam.height - 1));
+}
+
+// The ground at (x, z) is lit by the ambient light alone: 200 x ambient.
+void expect_ambient_only(const ColorImage& img, const Camera& cam, const DataSet& d, const char* method, double x,
+                         double z) {
+    const glm::vec3 ambient = d.environment.ambient * 200.0f;
+    const Rgb8 c = ground_pixel(img, cam, x, z);
+    EXPECT_NEAR(c.r, ambient.r, 3.0) << method << " at " << x << "," << z;
+    EXPECT_NEAR(c.g, ambient.g, 3.0) << method << " at " << x << "," << z;
+    EXPECT_NEAR(c.b, ambient.b, 3.0) << method << " at " << x << "," << z;
+}
+
+void expect_box_shadow(const char* method) {
+    const DataSet d = box_scene();
+    gl::HeadlessRenderer r(d.terrain, d.scene);
+    const Camera cam = south_east_camera(320, 240);
     Environment with = d.environment, without = d.environment;
     with.shadows = true;
     const ColorImage on = render(d, r, method, cam, with), off = render(d, r, method, cam, without);
-    const auto at = [&](const ColorImage& img, double x, double z) {
-        const auto p = cam.project({x, 0, z});
-        EXPECT_TRUE(p.col >= 0 && p.col < cam.width && p.row >= 0 && p.row < cam.height) << x << "," << z;
-        return img.at(std::clamp(int(p.col), 0, cam.width - 1), std::clamp(int(p.row), 0, cam.height - 1));
-    };
-    // Inside the footprint: the ambient light alone, 200 x ambient.
-    const glm::vec3 ambient = d.environment.ambient * 200.0f;
-    for (const auto& [x, z] : {std::pair{32.0, 32.0}, {30.0, 30.0}, {34.5, 34.5}, {29.0, 34.0}}) {
-        const Rgb8 c = at(on, x, z);
-        EXPECT_NEAR(c.r, ambient.r, 3.0) << method << " at " << x << "," << z;
-        EXPECT_NEAR(c.g, ambient.g, 3.0) << method << " at " << x << "," << z;
-        EXPECT_NEAR(c.b, ambient.b, 3.0) << method << " at " << x << "," << z;
-    }
+    const auto at = [&](const ColorImage& img, double x, double z) { return ground_pixel(img, cam, x, z); };
+    // Inside the footprint: the ambient light alone.
+    for (const auto& [x, z] : {std::pair{32.0, 32.0}, {30.0, 30.0}, {34.5, 34.5}, {29.0, 34.0}})
+        expect_ambient_only(on, cam, d, method, x, z);
     // Outside it (east of X = 36, south of Z = 36, north of Z = 28, and the
     // box's sunny west side): exactly as without shadows.
     for (const auto& [x, z] : {std::pair{40.0, 32.0}, {32.0, 40.0}, {32.0, 24.0}, {14.0, 32.0}, {44.0, 44.0}})
         EXPECT_EQ(at(on, x, z), at(off, x, z)) << method << " at " << x << "," << z;
-    EXPECT_GT(at(off, 32, 32).r, ambient.r + 60); // the ground is sunlit without the box's shadow
+    EXPECT_GT(at(off, 32, 32).r, d.environment.ambient.r * 200.0f + 60); // sunlit without the box's shadow
 }
 
 } // namespace
@@ -96,14 +111,7 @@ TEST(ObjectShadows, BoxOnFlatGroundInTheMesh) { expect_box_shadow("mesh"); }
 TEST(ObjectShadows, PartialDepthLoadDrawsTheSamePixelsAsTheWholeDepth) {
     const DataSet d = box_scene();
     gl::HeadlessRenderer r(d.terrain, d.scene);
-    Camera cam;
-    cam.eye = {32, 40, 72};
-    cam.heading = 180;
-    cam.pitch = -45;
-    cam.width = 320;
-    cam.height = 240;
-    cam.near = 1;
-    cam.far = 300;
+    const Camera cam = south_east_camera(320, 240);
     Environment env = d.environment;
     env.shadows = true;
     const MethodSettings settings;
@@ -136,31 +144,16 @@ void expect_vehicle_shadow(const char* method) {
     DataSet d = box_scene();
     d.scene.objects.clear();
     gl::HeadlessRenderer r(d.terrain, d.scene);
-    Camera cam; // looking north and down at the vehicle from the south-east
-    cam.eye = {32, 40, 72};
-    cam.heading = 180;
-    cam.pitch = -45;
-    cam.width = 640;
-    cam.height = 480;
-    cam.near = 1;
-    cam.far = 300;
+    const Camera cam = south_east_camera(640, 480);
     Environment with = d.environment, without = d.environment;
     with.shadows = true;
     gl::CompositeOptions options;
     options.vehicle = gl::VehiclePose{24, 32, 0};
     const ColorImage on = render(d, r, method, cam, with, options), off = render(d, r, method, cam, without, options);
-    const auto at = [&](const ColorImage& img, double x, double z) {
-        const auto p = cam.project({x, 0, z});
-        EXPECT_TRUE(p.col >= 0 && p.col < cam.width && p.row >= 0 && p.row < cam.height) << x << "," << z;
-        return img.at(std::clamp(int(p.col), 0, cam.width - 1), std::clamp(int(p.row), 0, cam.height - 1));
-    };
-    const glm::vec3 ambient = d.environment.ambient * 200.0f;
+    const auto at = [&](const ColorImage& img, double x, double z) { return ground_pixel(img, cam, x, z); };
     for (const auto& [x, z] : {std::pair{26.2, 32.0}, {26.0, 30.5}, {26.0, 33.5}, {26.6, 31.5}}) {
-        const Rgb8 c = at(on, x, z);
-        EXPECT_NEAR(c.r, ambient.r, 3.0) << method << " at " << x << "," << z;
-        EXPECT_NEAR(c.g, ambient.g, 3.0) << method << " at " << x << "," << z;
-        EXPECT_NEAR(c.b, ambient.b, 3.0) << method << " at " << x << "," << z;
-        EXPECT_GT(at(off, x, z).r, ambient.r + 60) << method << " at " << x << "," << z;
+        expect_ambient_only(on, cam, d, method, x, z);
+        EXPECT_GT(at(off, x, z).r, d.environment.ambient.r * 200.0f + 60) << method << " at " << x << "," << z;
     }
     for (const auto& [x, z] : {std::pair{28.0, 32.0}, {24.0, 37.0}, {24.0, 27.0}, {30.0, 36.0}})
         EXPECT_EQ(at(on, x, z), at(off, x, z)) << method << " at " << x << "," << z;
