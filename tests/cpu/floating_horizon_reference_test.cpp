@@ -182,28 +182,29 @@ TEST(FloatingHorizonVsRayMarcher, TiltGuedesIsMeasured) {
     EXPECT_GE(ec.mean_sil(), gc.mean_sil() - 1e-9);
 }
 
+const char* surface_name(SurfaceModel s) { return s == SurfaceModel::Blocks ? "blocks" : "bilinear"; }
+
+// A real DEM within the thresholds with near-step slices, shear on one
+// surface and tilt on the other; one-cell shear slices printed beside.
+void expect_dem_thresholds(const DataSet& ds, const std::string& name, SurfaceModel shear, SurfaceModel tilt) {
+    Totals t = sweep(ds, Projection::Shear, options(shear, TiltMethod::Exact, kNear));
+    t.print((name + " shear " + surface_name(shear) + " near-step").c_str());
+    t.expect_thresholds();
+    t = sweep(ds, Projection::Tilt, options(tilt, TiltMethod::Exact, kNear));
+    t.print((name + " tilt exact " + surface_name(tilt) + " near-step").c_str());
+    t.expect_thresholds();
+    sweep(ds, Projection::Shear, options(shear, TiltMethod::Exact, 0.0))
+        .print((name + " shear " + surface_name(shear) + " one-cell").c_str());
+}
+
 TEST(FloatingHorizonVsRayMarcher, CraterLakeDem) {
     OVERFLIGHT_SHARED_FILE(path, "bt/crater_0513.bt");
-    const DataSet ds = load_terrain(path);
-    Totals t = sweep(ds, Projection::Shear, options(SurfaceModel::Blocks, TiltMethod::Exact, kNear));
-    t.print("crater_0513 shear blocks near-step");
-    t.expect_thresholds();
-    t = sweep(ds, Projection::Tilt, options(SurfaceModel::Bilinear, TiltMethod::Exact, kNear));
-    t.print("crater_0513 tilt exact bilinear near-step");
-    t.expect_thresholds();
-    sweep(ds, Projection::Shear, options(SurfaceModel::Blocks, TiltMethod::Exact, 0.0)).print("crater_0513 shear blocks one-cell");
+    expect_dem_thresholds(load_terrain(path), "crater_0513", SurfaceModel::Blocks, SurfaceModel::Bilinear);
 }
 
 TEST(FloatingHorizonVsRayMarcher, SaintHelensDem) {
     OVERFLIGHT_SHARED_FILE(path, "usgs-dem/SainteHelens.dem");
-    const DataSet ds = load_terrain(path);
-    Totals t = sweep(ds, Projection::Shear, options(SurfaceModel::Bilinear, TiltMethod::Exact, kNear));
-    t.print("SainteHelens shear bilinear near-step");
-    t.expect_thresholds();
-    t = sweep(ds, Projection::Tilt, options(SurfaceModel::Blocks, TiltMethod::Exact, kNear));
-    t.print("SainteHelens tilt exact blocks near-step");
-    t.expect_thresholds();
-    sweep(ds, Projection::Shear, options(SurfaceModel::Bilinear, TiltMethod::Exact, 0.0)).print("SainteHelens shear bilinear one-cell");
+    expect_dem_thresholds(load_terrain(path), "SainteHelens", SurfaceModel::Bilinear, SurfaceModel::Blocks);
 }
 
 // The literal transcription and the fast caster paint the same pixels on shear views.
