@@ -34,7 +34,7 @@ namespace {
 // Image rows ahead of the one being written whose lines are prefetched for
 // writing: the block writes a short run into each of H rows, each row a new
 // page of each image, so without it every run waits for its lines (measured
-// at 3840x2160 on a Zen 1 EPYC: resolve 25-30 ms against 29-36 ms without).
+// at 3840x2160 on a Zen 1 EPYC: resolve 25-31 ms against 28-36 ms without).
 constexpr int kWritePrefetchRows = 8;
 
 // Prefetches for writing the run of n pixels of image row `row` (color and depth).
