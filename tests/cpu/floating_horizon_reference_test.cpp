@@ -182,19 +182,17 @@ TEST(FloatingHorizonVsRayMarcher, TiltGuedesIsMeasured) {
     EXPECT_GE(ec.mean_sil(), gc.mean_sil() - 1e-9);
 }
 
-const char* surface_name(SurfaceModel s) { return s == SurfaceModel::Blocks ? "blocks" : "bilinear"; }
-
 // A real DEM within the thresholds with near-step slices, shear on one
 // surface and tilt on the other; one-cell shear slices printed beside.
 void expect_dem_thresholds(const DataSet& ds, const std::string& name, SurfaceModel shear, SurfaceModel tilt) {
     Totals t = sweep(ds, Projection::Shear, options(shear, TiltMethod::Exact, kNear));
-    t.print((name + " shear " + surface_name(shear) + " near-step").c_str());
+    t.print((name + " shear " + to_string(shear) + " near-step").c_str());
     t.expect_thresholds();
     t = sweep(ds, Projection::Tilt, options(tilt, TiltMethod::Exact, kNear));
-    t.print((name + " tilt exact " + surface_name(tilt) + " near-step").c_str());
+    t.print((name + " tilt exact " + to_string(tilt) + " near-step").c_str());
     t.expect_thresholds();
     sweep(ds, Projection::Shear, options(shear, TiltMethod::Exact, 0.0))
-        .print((name + " shear " + surface_name(shear) + " one-cell").c_str());
+        .print((name + " shear " + to_string(shear) + " one-cell").c_str());
 }
 
 TEST(FloatingHorizonVsRayMarcher, CraterLakeDem) {

@@ -162,17 +162,14 @@ struct BrokenDataSet {
     const char* words;
 };
 
-void truncate_by_3(const std::string& path) {
-    std::filesystem::resize_file(path, std::filesystem::file_size(path) - 3);
-}
-
 const BrokenDataSet kBrokenDataSets[] = {
     {"MapSyntaxError", "map", [](const std::string& f) { write_text(f, "h_scale = 1\nv_scale = [1,\n"); }, "line "},
     {"MapMissingKey", "map", [](const std::string& f) { write_text(f, "h_scale = 1\n"); }, "missing key v_scale"},
     {"MapWrongTypedKey", "map", [](const std::string& f) { write_text(f, "h_scale = 1\nv_scale = \"x\"\n"); },
      "line 2: v_scale must be a number"},
     {"PgmMissing", "hf.pgm", [](const std::string& f) { std::filesystem::remove(f); }, "no such file"},
-    {"PgmTruncated", "hf.pgm", truncate_by_3, "truncated"},
+    {"PgmTruncated", "hf.pgm",
+     [](const std::string& f) { std::filesystem::resize_file(f, std::filesystem::file_size(f) - 3); }, "truncated"},
     {"PgmWrongMagic", "hf.pgm", [](const std::string& f) { write_text(f, "P2\n3 3\n255\n0 1 2 3 4 5 6 7 8\n"); },
      "magic"},
     {"PgmMaxvalZero", "hf.pgm",
