@@ -19,7 +19,7 @@
 # SIZE (default 1280x720), OUT (scratch folder, default /tmp/overflight-fly-replay).
 set -euo pipefail
 
-bin=${OVERFLIGHT:-build/release/overflight}
+bin=${OVERFLIGHT:-build/release/apps/overflight}
 frames=${FRAMES:-300}
 size=${SIZE:-1280x720}
 out=${OUT:-/tmp/overflight-fly-replay}
