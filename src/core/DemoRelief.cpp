@@ -43,7 +43,7 @@ void demo_relief(const float* s, const float* t, int octaves, std::uint32_t seed
                  DemoReliefKernel kernel) {
 #if OVERFLIGHT_DEMO_X86_64_V3
     static const bool v3 = demo_relief_kernel_available(DemoReliefKernel::X86_64_v3);
-    if (kernel == DemoReliefKernel::X86_64_v3 || (kernel == DemoReliefKernel::Auto && v3))
+    if (v3 && (kernel == DemoReliefKernel::Auto || kernel == DemoReliefKernel::X86_64_v3))
         return demo_relief_x86_64_v3(s, t, octaves, seed, out);
 #endif
     if (kernel == DemoReliefKernel::Scalar) {

@@ -14,7 +14,8 @@ constexpr int kDemoReliefLanes = 8;
 // Scalar: one position after another (the reference). Portable: the batch's
 // lanes in loops that the compiler vectorises for the baseline instruction
 // set. X86_64_v3: the same loops compiled for x86-64-v3 (AVX2), GCC on
-// x86-64 only. Auto: the fastest that this CPU runs.
+// x86-64 only. Auto: the fastest that this CPU runs. X86_64_v3 where it is
+// not available (demo_relief_kernel_available) runs Portable.
 enum class DemoReliefKernel { Auto, Scalar, Portable, X86_64_v3 };
 
 // The integer hash of the noise's lattice points (x, y) (also what places
