@@ -1,9 +1,10 @@
-// Based on: Musgrave's ridged multifractal (Texturing & Modeling, ch. 16) over
-// gradient noise (Perlin 2002), with domain warping (Quilez) for the drainage-
-// like ridges, and an island falloff. Deterministic: the noise is built on an
-// integer hash, not on std:: distributions whose output differs by library.
+// The demo island: its relief (DemoRelief.h: ridged multifractal noise with
+// domain warping and an island falloff) quantised into heights, a batch of
+// samples of a row at a time, colored by elevation and slope, and the village
+// and objects placed on it.
 #include "core/DemoIsland.h"
 
+#include "core/DemoRelief.h"
 #include "core/Error.h"
 #include "core/Parallel.h"
 #include "core/Shading.h"
@@ -20,106 +21,16 @@ namespace overflight {
 namespace {
 
 constexpr float kSeaLevel = 0.0f;   // world metres
-constexpr float kPeak = 1400.0f;    // highest relief before the falloff
 constexpr float kSeaFloor = -60.0f; // y0: the lowest representable height
 constexpr float kVScale = 0.05f;    // 5 cm height steps: 65535 steps cover 3.2 km
-
-std::uint32_t hash(std::uint32_t x, std::uint32_t y, std::uint32_t seed) {
-    std::uint32_t h = seed * 0x9E3779B9u ^ x * 0x85EBCA6Bu ^ y * 0xC2B2AE35u;
-    h ^= h >> 16; h *= 0x7FEB352Du;
-    h ^= h >> 15; h *= 0x846CA68Bu;
-    h ^= h >> 16;
-    return h;
-}
-
-// The unit gradients of gradient_noise, one per 16-bit angle: a lattice
-// point's gradient is picked by 16 bits of its hash, so 65536 cosines and sines
-// computed once (the same float expressions, so the same bits) stand for the
-// 140 per height sample that the island's octaves would otherwise compute
-// (they were three quarters of its generation time).
-struct Gradient {
-    float cos, sin;
-};
-const std::vector<Gradient>& gradients() {
-    static const std::vector<Gradient> table = [] {
-        std::vector<Gradient> g(65536);
-        for (std::uint32_t k = 0; k < 65536; ++k) {
-            const float a = float(k) * (6.28318530718f / 65536.0f);
-            g[k] = {std::cos(a), std::sin(a)};
-        }
-        return g;
-    }();
-    return table;
-}
-
-// 2D gradient noise in about [-1, 1] with quintic fade.
-float gradient_noise(float x, float y, std::uint32_t seed) {
-    const float fx = std::floor(x), fy = std::floor(y);
-    const auto ix = std::uint32_t(std::int32_t(fx)), iy = std::uint32_t(std::int32_t(fy));
-    const float tx = x - fx, ty = y - fy;
-    const Gradient* table = gradients().data();
-    auto grad = [&](std::uint32_t cx, std::uint32_t cy, float dx, float dy) {
-        const Gradient& g = table[hash(cx, cy, seed) & 0xFFFFu];
-        return g.cos * dx + g.sin * dy;
-    };
-    const float n00 = grad(ix, iy, tx, ty), n10 = grad(ix + 1, iy, tx - 1, ty);
-    const float n01 = grad(ix, iy + 1, tx, ty - 1), n11 = grad(ix + 1, iy + 1, tx - 1, ty - 1);
-    auto fade = [](float t) { return t * t * t * (t * (t * 6 - 15) + 10); };
-    const float u = fade(tx), v = fade(ty);
-    const float a = n00 + (n10 - n00) * u, b = n01 + (n11 - n01) * u;
-    return 1.41421356f * (a + (b - a) * v);
-}
-
-float fbm(float x, float y, int octaves, std::uint32_t seed) {
-    float sum = 0, amp = 0.5f, freq = 1;
-    for (int o = 0; o < octaves; ++o) {
-        sum += amp * gradient_noise(x * freq, y * freq, seed + std::uint32_t(o));
-        amp *= 0.5f;
-        freq *= 2.03f;
-    }
-    return sum;
-}
-
-// Ridged multifractal: sharp crests where the noise crosses zero, each octave
-// weighted by the previous one so valleys stay smooth (erosion-like).
-float ridged(float x, float y, int octaves, std::uint32_t seed) {
-    float sum = 0, weight = 1, amp = 0.5f, freq = 1, norm = 0;
-    for (int o = 0; o < octaves; ++o) {
-        float n = 1.0f - std::abs(gradient_noise(x * freq, y * freq, seed + 101u + std::uint32_t(o)));
-        n *= n;
-        n *= weight;
-        weight = std::clamp(n * 2.0f, 0.0f, 1.0f);
-        sum += n * amp;
-        norm += amp;
-        amp *= 0.5f;
-        freq *= 2.0f;
-    }
-    return sum / norm;
-}
-
-// Relief in metres at normalised position (s, t) in [0,1]^2.
-float relief(float s, float t, int octaves, std::uint32_t seed) {
-    // Domain warp bends the ridges into drainage-like patterns.
-    const float wx = fbm(s * 3.0f, t * 3.0f, 4, seed + 7u);
-    const float wy = fbm(s * 3.0f + 5.2f, t * 3.0f + 1.3f, 4, seed + 11u);
-    const float x = s * 6.0f + 0.8f * wx, y = t * 6.0f + 0.8f * wy;
-    const float mountains = ridged(x, y, octaves, seed);
-    const float hills = 0.5f + 0.5f * fbm(x * 1.7f, y * 1.7f, octaves, seed + 31u);
-    // Island falloff: distance from the centre, perturbed so the coast is ragged.
-    const float dx = s - 0.5f, dy = t - 0.5f;
-    const float r = std::sqrt(dx * dx + dy * dy) * 2.0f + 0.25f * fbm(s * 4.0f, t * 4.0f, 5, seed + 53u);
-    const float island = std::clamp(1.15f - r * 1.2f, -1.0f, 1.0f);
-    const float land = island > 0 ? std::pow(island, 0.8f) : island;
-    return land * (0.75f * mountains + 0.25f * hills) * kPeak + (land - 0.12f) * 220.0f;
-}
 
 // A flat, dry spot for the village: the flattest of a few deterministic candidates on land.
 glm::vec2 find_village(const Terrain& t) {
     glm::vec2 best{t.width() * 0.5f, t.depth() * 0.5f};
     float best_score = 1e30f;
     for (int k = 0; k < 400; ++k) {
-        const float s = 0.2f + 0.6f * float(hash(std::uint32_t(k), 1u, 77u) & 0xFFFF) / 65535.0f;
-        const float u = 0.2f + 0.6f * float(hash(std::uint32_t(k), 2u, 77u) & 0xFFFF) / 65535.0f;
+        const float s = 0.2f + 0.6f * float(demo_lattice_hash(std::uint32_t(k), 1u, 77u) & 0xFFFF) / 65535.0f;
+        const float u = 0.2f + 0.6f * float(demo_lattice_hash(std::uint32_t(k), 2u, 77u) & 0xFFFF) / 65535.0f;
         const float x = s * t.width(), z = u * t.depth();
         const float h = t.height_bilinear(x, z);
         if (h < 40.0f || h > 500.0f) continue;
@@ -145,11 +56,17 @@ DataSet make_demo_island(const DemoOptions& options) {
     Terrain& t = ds.terrain;
     // Octaves follow the resolution so larger islands gain detail, not just size.
     const int octaves = std::clamp(int(std::log2(float(n - 1))) - 1, 4, 13);
+    // A row's last batch repeats its last column in the lanes past the edge.
     parallel::for_each_index(0, n, [&](int row) {
-        for (int col = 0; col < n; ++col) {
-            float h = relief(float(col) / float(n - 1), float(row) / float(n - 1), octaves, options.seed);
-            h = std::max(h, kSeaLevel - 35.0f);
-            t.raw(row, col) = std::uint16_t(std::clamp(std::lround((h - kSeaFloor) / kVScale), 0L, 65535L));
+        float s[kDemoReliefLanes], t_row[kDemoReliefLanes], relief[kDemoReliefLanes];
+        std::fill_n(t_row, kDemoReliefLanes, float(row) / float(n - 1));
+        for (int col0 = 0; col0 < n; col0 += kDemoReliefLanes) {
+            for (int i = 0; i < kDemoReliefLanes; ++i) s[i] = float(std::min(col0 + i, n - 1)) / float(n - 1);
+            demo_relief(s, t_row, octaves, options.seed, relief);
+            for (int col = col0; col < std::min(col0 + kDemoReliefLanes, n); ++col) {
+                const float h = std::max(relief[col - col0], kSeaLevel - 35.0f);
+                t.raw(row, col) = std::uint16_t(std::clamp(std::lround((h - kSeaFloor) / kVScale), 0L, 65535L));
+            }
         }
     });
     shade_by_elevation(t, kSeaLevel);
