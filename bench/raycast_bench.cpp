@@ -101,12 +101,14 @@ void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool
     DepthImage depth;
     RaycastStats stats;
     fh.render(cam, env, opt, color, depth, &stats); // warm-up
-    double ms_cast = 0;
+    double ms_cast = 0, ms_resolve = 0;
     for (auto _ : state) {
         fh.render(cam, env, opt, color, depth, &stats);
         ms_cast += stats.ms_cast;
+        ms_resolve += stats.ms_resolve;
     }
     state.counters["cast_ms"] = ms_cast / double(state.iterations());
+    state.counters["resolve_ms"] = ms_resolve / double(state.iterations());
     state.counters["ns_per_sample"] = benchmark::Counter(double(stats.samples) * 1e-9 * double(state.iterations()),
                                                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
     state.counters["samples"] = double(stats.samples);
@@ -158,11 +160,12 @@ void BM_VoxelNoSkipV3(benchmark::State& s) {
     o.kernel = CastKernel::X86_64_v3;
     run_fast(s, Projection::Shear, o);
 }
-// The AVX2 resolve and drape reading their tables with gathers and with
-// scalar loads (ResolveKernel::Avx2, Avx2Loads: raycast/LaneLookup.h), plain
-// and with every look (the imagery's drape); Auto (BM_Voxel,
-// BM_VoxelAllLooks) drapes with the loads where gathers are slow and runs
-// the AVX-512 kernels where the CPU has them.
+// The AVX2 resolve and drape reading their tables with gathers, with scalar
+// loads and through windows (ResolveKernel::Avx2, Avx2Loads, Avx2Window:
+// raycast/LaneLookup.h), plain and with every look (the imagery's drape);
+// Auto (BM_Voxel, BM_VoxelAllLooks) resolves through windows and drapes with
+// the loads where gathers are slow, and runs the AVX-512 kernels where the
+// CPU has them.
 void run_resolve(benchmark::State& s, ResolveKernel kernel, bool all_looks) {
     if (!resolve_kernel_available(kernel)) {
         s.SkipWithError("no AVX2 on this CPU");
@@ -174,8 +177,10 @@ void run_resolve(benchmark::State& s, ResolveKernel kernel, bool all_looks) {
 }
 void BM_VoxelGathers(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2, false); }
 void BM_VoxelLoads(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2Loads, false); }
+void BM_VoxelWindow(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2Window, false); }
 void BM_VoxelAllLooksGathers(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2, true); }
 void BM_VoxelAllLooksLoads(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2Loads, true); }
+void BM_VoxelAllLooksWindow(benchmark::State& s) { run_resolve(s, ResolveKernel::Avx2Window, true); }
 void BM_VoxelBilinear(benchmark::State& s) {
     RaycastOptions o;
     o.surface = SurfaceModel::Bilinear;
@@ -225,8 +230,10 @@ BENCHMARK(BM_VoxelV3)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTim
 BENCHMARK(BM_VoxelNoSkipV3)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelGathers)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelLoads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelWindow)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelAllLooksGathers)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelAllLooksLoads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelAllLooksWindow)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelLod)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelNearStep)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -30,7 +30,7 @@ enum class CastKernel { Auto, Portable, X86_64_v3, X86_64_v4 };
 // (raycast/ShearResolve.h, ShearDrape.h; all give the same bits). Auto picks
 // the fastest the CPU runs; the others are for tests and measurements, when
 // resolve_kernel_available().
-enum class ResolveKernel { Auto, Portable, Avx2, Avx2Loads, Avx512, Simd128 };
+enum class ResolveKernel { Auto, Portable, Avx2, Avx2Loads, Avx2Window, Avx512, Simd128 };
 
 const char* to_string(SurfaceModel s);
 const char* to_string(TiltMethod t);

@@ -87,10 +87,10 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
         m_top = _mm256_blendv_ps(m_top, m, _mm256_castsi256_ps(top));
         prev = k;
         if (_mm256_movemask_epi8(same) != -1) {
-            dk = Lookup::floats(f.slice_d, k);
-            d_prev = _mm256_blendv_ps(Lookup::floats(f.slice_d, _mm256_max_epi32(_mm256_sub_epi32(k, one), zero)),
+            dk = Lookup::floats(f.slice_d, 0, k);
+            d_prev = _mm256_blendv_ps(Lookup::floats(f.slice_d, 0, _mm256_max_epi32(_mm256_sub_epi32(k, one), zero)),
                                       d_before, _mm256_castsi256_ps(_mm256_cmpeq_epi32(k, zero)));
-            sl = Lookup::floats(slog, k);
+            sl = Lookup::floats(slog, 0, k);
         }
         __m256 d = dk;
         if (mj < 0.0f) {
@@ -126,7 +126,7 @@ __attribute__((target("avx2"))) void drape_lanes_avx2(const DrapeFrame& f, const
         const __m256i idx = _mm256_add_epi32(pick(lv.first, lvl, upper, any_upper),
                                              _mm256_or_si256(_mm256_slli_epi32(page, 10), in_page));
         // Unpainted lanes' texels are not used (their pixels stay as they are).
-        const __m256i albedo = Lookup::words(texels, idx, painted);
+        const __m256i albedo = Lookup::words(texels, 0, idx, painted);
         // modulate_light.
         std::uint32_t* out = color + std::size_t(j) * kShearBlock + i;
         const __m256i light = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(out));
@@ -262,7 +262,7 @@ void drape_shear_block(const DrapeFrame& f, const float* dir_x, const float* dir
             for (int i = 0; i < kShearBlock; i += 16)
                 if (f.d_step > 0.0f) drape_lanes_avx512<true>(f, dxs, dzs, ends, i, color, slice);
                 else drape_lanes_avx512<false>(f, dxs, dzs, ends, i, color, slice);
-        else if (kernel == ResolveKernel::Avx2Loads)
+        else if (kernel == ResolveKernel::Avx2Loads || kernel == ResolveKernel::Avx2Window)
             for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2<LoadLookup>(f, dxs, dzs, ends, i, color, slice);
         else
             for (int i = 0; i < kShearBlock; i += 8) drape_lanes_avx2<GatherLookup>(f, dxs, dzs, ends, i, color, slice);

@@ -18,8 +18,9 @@ namespace overflight {
 // pixel j at color/slice[j * kShearBlock + i] (ShearResolve.h's scratch).
 // Evenly spaced slices (f.d_step > 0) let the Avx512 kernel compute view
 // depths rather than read them. ResolveKernel::Avx2, Avx2Loads (its tables
-// read with scalar loads rather than gathers, LaneLookup.h) and Avx512 (8, 8
-// and 16 lanes, the same bits) must be resolve_kernel_available(); Auto picks
+// read with scalar loads rather than gathers, LaneLookup.h; Avx2Window drapes
+// as Avx2Loads: the texels of neighbouring lanes are not neighbours) and
+// Avx512 (8, 8 and 16 lanes, the same bits) must be resolve_kernel_available(); Auto picks
 // the wider one the CPU has (Avx2Loads where gathers are slow,
 // cpu_gathers_slow: on a Zen 1 EPYC it drapes in 12 % less time than Avx2,
 // measured), else runs drape_column per column

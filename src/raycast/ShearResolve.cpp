@@ -215,7 +215,7 @@ struct FogLanes {
         __m256i fogged = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
         if constexpr (kTerrain) {
             const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_set1_ps(t.fog->inv_step())), half);
-            const __m256i a = L::words(t.fog->entries(),
+            const __m256i a = L::words(t.fog->entries(), FogTable::kEntries + 1,
                                        _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(FogTable::kEntries)));
             const __m256i b = _mm256_sub_epi32(_mm256_set1_epi32(256), a);
             const __m256i mask_rb = _mm256_set1_epi32(0xFF00FF), mask_g = _mm256_set1_epi32(0x00FF00);
@@ -236,7 +236,7 @@ struct FogLanes {
                 _mm256_mul_ps(_mm256_div_ps(m, len), _mm256_set1_ps(float(SkyTable::kEntries - 1))), half);
             const __m256i e = _mm256_max_epi32(
                 _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(SkyTable::kEntries - 1)), _mm256_setzero_si256());
-            sky = L::words(t.sky, e);
+            sky = L::words(t.sky, SkyTable::kEntries, e);
         }
         return _mm256_blendv_epi8(sky, fogged, terrain);
     }
@@ -291,7 +291,7 @@ struct AirLanes {
                                                             _mm256_set1_ps(AerialTables::kPhaseScale)),
                                               half),
                                 float(AerialTables::kPhases - 1));
-        const __m256i h = L::words(air.haze(), p);
+        const __m256i h = L::words(air.haze(), AerialTables::kPhases, p);
         __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
         if constexpr (kTerrain) {
             const __m256 dy = _mm256_mul_ps(d, m);
@@ -299,8 +299,8 @@ struct AirLanes {
                                                                  _mm256_set1_ps(air.inv_dy_step())),
                                                    half),
                                      float(AerialTables::kHeights - 1));
-            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), L::floats(air.column(), hj)), half);
-            const __m256i w = L::words(air.transmit(), _mm256_cvttps_epi32(_mm256_min_ps(
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), L::floats(air.column(), AerialTables::kHeights, hj)), half);
+            const __m256i w = L::words(air.transmit(), AerialTables::kColumns + 1, _mm256_cvttps_epi32(_mm256_min_ps(
                                                            x, _mm256_set1_ps(float(AerialTables::kColumns)))));
             lit = air_blend(c, w, h);
         }
@@ -309,7 +309,7 @@ struct AirLanes {
                                                                 _mm256_set1_ps(float(AerialTables::kSkies - 1))),
                                                   half),
                                     float(AerialTables::kSkies - 1));
-            sky = air_blend(_mm256_setzero_si256(), L::words(air.opacity(), q), h, false);
+            sky = air_blend(_mm256_setzero_si256(), L::words(air.opacity(), AerialTables::kSkies, q), h, false);
         }
         return _mm256_blendv_epi8(sky, lit, terrain);
     }
@@ -350,9 +350,9 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
-                z = Lanes::Lookup::floats(t.slice_depth, k);
+                z = Lanes::Lookup::floats(t.slice_depth, t.slices, k);
                 d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
-                          : Lanes::Lookup::floats(t.slice_d, k);
+                          : Lanes::Lookup::floats(t.slice_d, t.slices, k);
                 c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
             }
             store_lanes(lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c),
@@ -611,6 +611,7 @@ bool resolve_kernel_available(ResolveKernel kernel) {
     case ResolveKernel::Portable: return true;
     case ResolveKernel::Avx2:
     case ResolveKernel::Avx2Loads:
+    case ResolveKernel::Avx2Window:
 #if OVERFLIGHT_RESOLVE_AVX2
         return __builtin_cpu_supports("avx2");
 #else
@@ -640,14 +641,19 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
         jmin = std::min(jmin, blk.jend[i]);
         jmax = std::max(jmax, blk.jend[i]);
     }
-    // Avx2 even where gathers are slow (cpu_gathers_slow): the resolve waits
-    // on its image stores more than on its lookups, and on a Zen 1 EPYC
-    // Avx2Loads took 8 % more time than Avx2 plain, 7 % more with the
-    // aerial perspective (measured, alternated in one process).
-    static const ResolveKernel fastest = resolve_kernel_available(ResolveKernel::Avx512)    ? ResolveKernel::Avx512
-                                         : resolve_kernel_available(ResolveKernel::Avx2)      ? ResolveKernel::Avx2
-                                         : resolve_kernel_available(ResolveKernel::Simd128) ? ResolveKernel::Simd128
-                                                                                              : ResolveKernel::Portable;
+    // Avx2Window where gathers are slow (cpu_gathers_slow). On a Zen 1 EPYC,
+    // bench_raycast_bench's 1080p view, 4097^2 demo, the three ways
+    // interleaved in one process (medians of 6-10): the resolve step took
+    // 8.6 / 7.8 / 7.8 ms (gathers / loads / windows) on one thread, 5.0 /
+    // 4.5 / 4.4 ms on two (two series); with every look (the aerial
+    // perspective's four tables) 14.9 / 14.1 / 12.5 ms on one thread, 7.7 /
+    // 7.0 / 6.3 ms on two.
+    static const ResolveKernel fastest =
+        resolve_kernel_available(ResolveKernel::Avx512) ? ResolveKernel::Avx512
+        : resolve_kernel_available(ResolveKernel::Avx2)
+            ? (cpu_gathers_slow() ? ResolveKernel::Avx2Window : ResolveKernel::Avx2)
+        : resolve_kernel_available(ResolveKernel::Simd128) ? ResolveKernel::Simd128
+                                                           : ResolveKernel::Portable;
     if (kernel == ResolveKernel::Auto) kernel = fastest;
 #if OVERFLIGHT_RESOLVE_AVX2
     if (kernel == ResolveKernel::Avx512 && t.air) {
@@ -668,6 +674,11 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     if (kernel == ResolveKernel::Avx2Loads) {
         if (t.air) avx2(AirLanes<LoadLookup>{t});
         else avx2(FogLanes<LoadLookup>{t});
+        return;
+    }
+    if (kernel == ResolveKernel::Avx2Window) {
+        if (t.air) avx2(AirLanes<WindowLookup<LoadLookup>>{t});
+        else avx2(FogLanes<WindowLookup<LoadLookup>>{t});
         return;
     }
     if (kernel == ResolveKernel::Avx2 || kernel == ResolveKernel::Avx512) {

@@ -53,9 +53,11 @@ struct ShearBlock {
 };
 
 // The kernel that computes the pixels (RaycastOptions.h: all give the same
-// bits). Avx2 reads its tables with gathers, Avx2Loads with scalar loads
-// (LaneLookup.h); Auto picks Avx2 for the resolve and Avx2Loads for the
-// imagery's drape where gathers are slow (cpu_gathers_slow). Avx512 (AVX-512 F, BW, DQ and VL) has kernels of its
+// bits). Avx2 reads its tables with gathers, Avx2Loads with scalar loads,
+// Avx2Window through 8-entry windows permuted in registers, with scalar loads
+// where a lane falls outside (LaneLookup.h); where gathers are slow
+// (cpu_gathers_slow) Auto picks Avx2Window for the resolve and Avx2Loads for
+// the imagery's drape. Avx512 (AVX-512 F, BW, DQ and VL) has kernels of its
 // own for the aerial perspective (16 lanes, the tables read from windows
 // permuted in registers) and in the imagery's drape (ShearDrape.h); for
 // GL_EXP fog the resolve runs its AVX2 kernel. Simd128 is WebAssembly's (a

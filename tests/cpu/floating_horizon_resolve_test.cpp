@@ -41,7 +41,7 @@ ShearBlock block(int n, const std::vector<int>& jend, const std::vector<float>& 
 // The kernels other than the portable one that this CPU runs.
 std::vector<ResolveKernel> fast_kernels() {
     std::vector<ResolveKernel> out;
-    for (ResolveKernel k : {ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx512})
+    for (ResolveKernel k : {ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window, ResolveKernel::Avx512})
         if (resolve_kernel_available(k)) out.push_back(k);
     return out;
 }
@@ -66,7 +66,8 @@ TEST(ShearResolve, HandWorkedBlock) {
     const ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0xFFFFFFu, sky.entries()};
     const int H = 3, W = 5;
     const Rgb8 a{10, 20, 30}, b{40, 50, 60}, c{70, 80, 90}, e{1, 2, 3};
-    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads}) {
+    for (ResolveKernel kernel :
+         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(H);
         s.set(0, 0, pack_rgb(a), 0);
@@ -121,7 +122,8 @@ TEST(ShearResolve, FogAtTheEyeDistanceOfThePixel) {
     const ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, fog_color, sky.entries()};
     const std::uint32_t expected = fog_blend(surface, fog_color, fog.weight(125.0f));
     EXPECT_NE(expected, surface);
-    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads}) {
+    for (ResolveKernel kernel :
+         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(1);
         s.set(0, 0, surface, 0);
@@ -159,7 +161,8 @@ TEST(ShearResolve, AerialPerspectiveAtThePixel) {
     t.sun_y = 0.8f;
     const std::uint32_t expected = air.terrain(surface, 125.0f, 75.0f, 0.96f);
     EXPECT_NE(expected, surface);
-    for (ResolveKernel kernel : {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads}) {
+    for (ResolveKernel kernel :
+         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(2);
         s.set(1, 0, surface, 0);
@@ -262,9 +265,11 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
 
 // As an image's blocks are (the random lanes above are not): neighbouring
 // lanes see nearly the same sun angle, ray length and slice, so their table
-// entries are adjacent, with jumps on some rows; the aerial perspective's
-// bits stay the portable kernel's, up to the tables' last entries (rows up
-// to the zenith, columns of air past the last).
+// entries are adjacent, with jumps on some rows (Avx2Window reads them
+// through its window, and its fallback at the jumps); the bits stay the
+// portable kernel's with GL_EXP fog, read and computed view depths, and the
+// aerial perspective, up to the tables' last entries (rows up to the zenith,
+// columns of air past the last).
 TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     if (!resolve_kernel_available(ResolveKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
     const int H = 400, S = 3000, W = kShearBlock;
@@ -278,15 +283,19 @@ TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     env.atmosphere = true;
     env.sun_dir = {0.6f, 0.1f, 0.8f};
     FogTable fog;
-    fog.build(0.0f, 1.0f);
+    fog.build(0.0004f, d.back() * 1.5f);
     SkyTable sky;
     sky.build(env);
     AerialTables air;
     air.build(aerial_frame(env, 50.0), -300.0f, 400.0f);
-    ShearResolveTables t{rows.data(), depth.data(), d.data(), &fog, 0u, sky.entries()};
+    ShearResolveTables fogged{rows.data(), depth.data(), d.data(), &fog, 0x9AB0C8u, sky.entries()};
+    fogged.slices = S;
+    ShearResolveTables even = fogged;
+    even.d_first = 1.0f;
+    even.d_step = 8.0f;
+    ShearResolveTables t = fogged;
     t.air = &air;
     t.sun_y = 0.1f;
-    t.slices = S;
     std::vector<int> jend(kShearBlock);
     std::vector<float> len2(kShearBlock);
     for (int i = 0; i < kShearBlock; ++i) {
@@ -307,12 +316,16 @@ TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     c2.resize(W, H);
     z1.resize(W, H);
     z2.resize(W, H);
-    resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c1.pixels.data(), z1.pixels.data(), std::size_t(W),
-                        ResolveKernel::Portable);
-    for (ResolveKernel kernel : fast_kernels()) {
-        resolve_shear_block(t, blk, H, s.color.data(), s.slice.data(), c2.pixels.data(), z2.pixels.data(),
-                            std::size_t(W), kernel);
-        EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8))) << int(kernel);
-        EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float))) << int(kernel);
+    for (const ShearResolveTables* tables : {&fogged, &even, &t}) {
+        resolve_shear_block(*tables, blk, H, s.color.data(), s.slice.data(), c1.pixels.data(), z1.pixels.data(),
+                            std::size_t(W), ResolveKernel::Portable);
+        for (ResolveKernel kernel : fast_kernels()) {
+            resolve_shear_block(*tables, blk, H, s.color.data(), s.slice.data(), c2.pixels.data(), z2.pixels.data(),
+                                std::size_t(W), kernel);
+            EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)))
+                << int(kernel) << (tables->air ? " air" : " fog");
+            EXPECT_EQ(0, std::memcmp(z1.pixels.data(), z2.pixels.data(), z1.pixels.size() * sizeof(float)))
+                << int(kernel) << (tables->air ? " air" : " fog");
+        }
     }
 }

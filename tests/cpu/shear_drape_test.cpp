@@ -28,7 +28,8 @@ ImageryPyramid random_pyramid(int w, int h, std::mt19937& rng) {
 // The SIMD kernels this CPU runs.
 std::vector<ResolveKernel> simd_kernels() {
     std::vector<ResolveKernel> out;
-    for (const ResolveKernel k : {ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx512})
+    for (const ResolveKernel k :
+         {ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window, ResolveKernel::Avx512})
         if (resolve_kernel_available(k)) out.push_back(k);
     return out;
 }
@@ -144,7 +145,8 @@ TEST(ShearDrape, HandWorkedPixel) {
     EXPECT_EQ(texels.level(1, 0), 0);
     const DrapeFrame frame{&texels, slice_d.data(), 1.0f, row_m.data(), 2.0f, 1.0f};
     for (const ResolveKernel kernel :
-         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx512}) {
+         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window,
+          ResolveKernel::Avx512}) {
         if (!resolve_kernel_available(kernel)) continue;
         std::vector<std::uint32_t> color(kShearBlock, 0), slice(kShearBlock, 0);
         color[0] = 128u | (64u << 8) | (255u << 16);
