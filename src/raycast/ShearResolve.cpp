@@ -648,12 +648,15 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     // 4.5 / 4.4 ms on two (two series); with every look (the aerial
     // perspective's four tables) 14.9 / 14.1 / 12.5 ms on one thread, 7.7 /
     // 7.0 / 6.3 ms on two.
-    static const ResolveKernel fastest =
-        resolve_kernel_available(ResolveKernel::Avx512) ? ResolveKernel::Avx512
-        : resolve_kernel_available(ResolveKernel::Avx2)
-            ? (cpu_gathers_slow() ? ResolveKernel::Avx2Window : ResolveKernel::Avx2)
-        : resolve_kernel_available(ResolveKernel::Simd128) ? ResolveKernel::Simd128
-                                                           : ResolveKernel::Portable;
+    static const ResolveKernel fastest = [] {
+        if (resolve_kernel_available(ResolveKernel::Avx512)) return ResolveKernel::Avx512;
+#if OVERFLIGHT_RESOLVE_AVX2
+        if (resolve_kernel_available(ResolveKernel::Avx2))
+            return cpu_gathers_slow() ? ResolveKernel::Avx2Window : ResolveKernel::Avx2;
+#endif
+        if (resolve_kernel_available(ResolveKernel::Simd128)) return ResolveKernel::Simd128;
+        return ResolveKernel::Portable;
+    }();
     if (kernel == ResolveKernel::Auto) kernel = fastest;
 #if OVERFLIGHT_RESOLVE_AVX2
     if (kernel == ResolveKernel::Avx512 && t.air) {
