@@ -299,7 +299,8 @@ struct AirLanes {
                                                                  _mm256_set1_ps(air.inv_dy_step())),
                                                    half),
                                      float(AerialTables::kHeights - 1));
-            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), L::floats(air.column(), AerialTables::kHeights, hj)), half);
+            const __m256 per_unit = L::floats(air.column(), AerialTables::kHeights, hj);
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), per_unit), half);
             const __m256i w = L::words(air.transmit(), AerialTables::kColumns + 1, _mm256_cvttps_epi32(_mm256_min_ps(
                                                            x, _mm256_set1_ps(float(AerialTables::kColumns)))));
             lit = air_blend(c, w, h);

@@ -41,7 +41,8 @@ ShearBlock block(int n, const std::vector<int>& jend, const std::vector<float>& 
 // The kernels other than the portable one that this CPU runs.
 std::vector<ResolveKernel> fast_kernels() {
     std::vector<ResolveKernel> out;
-    for (ResolveKernel k : {ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window, ResolveKernel::Avx512})
+    for (ResolveKernel k :
+         {ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window, ResolveKernel::Avx512})
         if (resolve_kernel_available(k)) out.push_back(k);
     return out;
 }
