@@ -14,7 +14,8 @@
 #    M triangles/s.
 # 4. The flight window against the headless composite of the same path
 #    (`fly --frames N` under xvfb-run when there is no display, then
-#    `fly --replay`), voxel method at 1280x720: the window's share.
+#    `fly --replay`), voxel method at 1280x720 and 1920x1080: the window's
+#    share.
 # Absolute times swing with the machine (2-3x between days on a shared VM);
 # the load average is printed beside each step, and goals are best judged on
 # an idle machine. Environment: BUILD (default build/release), FRAMES (bench
@@ -38,14 +39,17 @@ echo "LOD 4K (load $(load))" >&2
 echo "ROAM (load $(load))" >&2
 "$build/bench/bench_roam" --benchmark_filter='BM_RoamFrame/[01]/(65536|262144)$' --benchmark_repetitions=3 \
     --benchmark_report_aggregates_only=true --benchmark_format=json >"$out/roam.json" 2>/dev/null
-echo "fly window and replay, 1280x720 (load $(load))" >&2
-xvfb=()
-if [[ -z "${DISPLAY:-}" ]]; then xvfb=(xvfb-run -a -s "-screen 0 1280x720x24"); fi
-"${xvfb[@]}" "$bin" fly demo --method voxel --size 1280x720 --frames "$fly_frames" --no-hud \
-    --press "accelerate:0-$fly_frames" "left:$((fly_frames / 3))-$((2 * fly_frames / 3))" \
-    --record "$out/fly.csv" >"$out/window.csv"
-rm -rf "$out/replay"
-"$bin" fly demo --method voxel --size 1280x720 --replay "$out/fly.csv" --out "$out/replay" >"$out/replay.csv"
+for size in 1280x720 1920x1080; do
+    echo "fly window and replay, $size (load $(load))" >&2
+    xvfb=()
+    if [[ -z "${DISPLAY:-}" ]]; then xvfb=(xvfb-run -a -s "-screen 0 ${size}x24"); fi
+    "${xvfb[@]}" "$bin" fly demo --method voxel --size "$size" --frames "$fly_frames" --no-hud \
+        --press "accelerate:0-$fly_frames" "left:$((fly_frames / 3))-$((2 * fly_frames / 3))" \
+        --record "$out/fly-$size.csv" >"$out/window-$size.csv"
+    rm -rf "$out/replay-$size"
+    "$bin" fly demo --method voxel --size "$size" --replay "$out/fly-$size.csv" --out "$out/replay-$size" \
+        >"$out/replay-$size.csv"
+done
 
 python3 - "$out" <<'EOF'
 import csv, json, sys
@@ -85,9 +89,10 @@ def fly_fps(path):
     with open(path) as f:
         return float(next(csv.DictReader(f))["fps"])
 
-window, replay = fly_fps(f"{out}/window.csv"), fly_fps(f"{out}/replay.csv")
-rows.append(("fly voxel 1280x720: window / replay fps", f"{window:.1f} / {replay:.1f} = {window / replay:.2f}",
-             ">= 0.85", 0.85 / (window / replay)))
+for size in ("1280x720", "1920x1080"):
+    window, replay = fly_fps(f"{out}/window-{size}.csv"), fly_fps(f"{out}/replay-{size}.csv")
+    rows.append((f"fly voxel {size}: window / replay fps", f"{window:.1f} / {replay:.1f} = {window / replay:.2f}",
+                 ">= 0.85", 0.85 / (window / replay)))
 print("| measure | measured | goal | factor to the goal |")
 print("|---|---:|---:|---:|")
 for what, measured, goal, factor in rows:
