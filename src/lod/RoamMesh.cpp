@@ -96,6 +96,7 @@ void RoamMesh::reserve_for(int budget) {
     if (cap > nodes_.size()) {
         nodes_ = decltype(nodes_)(cap);
         children_.assign(cap, -1);
+        split_bits_.assign((cap + 63) / 64, 0);
         vertices_.assign(cap / 2 + 4, Vertex{});
     }
 }
@@ -233,9 +234,12 @@ void RoamMesh::prefetch_split(std::int32_t t, const Node& n) const {
 }
 
 void RoamMesh::prefetch_ahead(const std::vector<std::int32_t>& bucket) const {
+    // Entries split by force since they were queued (most entries at large
+    // budgets) are dropped when popped and need nothing.
     const std::size_t n = bucket.size();
-    if (n > kNodeAhead) prefetch(&nodes_[std::size_t(bucket[n - 1 - kNodeAhead])]);
-    if (n > kOwnAhead) {
+    if (n > kNodeAhead && !is_split(bucket[n - 1 - kNodeAhead]))
+        prefetch(&nodes_[std::size_t(bucket[n - 1 - kNodeAhead])]);
+    if (n > kOwnAhead && !is_split(bucket[n - 1 - kOwnAhead])) {
         const std::int32_t t = bucket[n - 1 - kOwnAhead];
         const Node& N = nodes_[std::size_t(t)];
         prefetch(&children_[std::size_t(t)]);
@@ -244,7 +248,7 @@ void RoamMesh::prefetch_ahead(const std::vector<std::int32_t>& bucket) const {
         for (const std::uint32_t v : N.v) prefetch(&vertices_[v]);
         if (int(N.level()) < variance_.stored_depth()) prefetch(variance_.data() + 2 * N.var_node());
     }
-    if (n > kMidAhead) {
+    if (n > kMidAhead && !is_split(bucket[n - 1 - kMidAhead])) {
         const std::int32_t t = bucket[n - 1 - kMidAhead];
         const Node& N = nodes_[std::size_t(t)];
         const Vertex& v0 = vertices_[N.v[1]];
@@ -261,7 +265,7 @@ void RoamMesh::prefetch_ahead(const std::vector<std::int32_t>& bucket) const {
             }
         }
     }
-    if (n > 0) prefetch(&nodes_[std::size_t(bucket.back())]);
+    if (n > 0 && !is_split(bucket.back())) prefetch(&nodes_[std::size_t(bucket.back())]);
 }
 
 void RoamMesh::make_children(std::int32_t t, std::int32_t c, std::uint32_t m, std::int32_t across) {
@@ -295,6 +299,7 @@ void RoamMesh::make_children(std::int32_t t, std::int32_t c, std::uint32_t m, st
     relink(n0, c);
     relink(n2, c + 1);
     T.bits = bits | std::uint32_t(kSplit) << 27;
+    split_bits_[std::size_t(t) >> 6] |= std::uint64_t(1) << (t & 63);
     children_[std::size_t(t)] = c;
     const Node parent{{}, {}, error, bits};
     const int level = parent.level() + 1;
@@ -340,6 +345,7 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
     camera.validate();
     if (budget < 2) throw Error("triangle budget", std::to_string(budget) + " is below 2");
     reserve_for(budget);
+    std::fill(split_bits_.begin(), split_bits_.begin() + std::ptrdiff_t((node_count_ + 63) / 64), 0);
     node_count_ = vertex_count_ = 0;
     for (auto& bucket : buckets_) bucket.clear();
     max_bucket_ = 0;
@@ -388,7 +394,7 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
         const std::int32_t t = bucket.back();
         bucket.pop_back();
         prefetch_ahead(bucket);
-        if (nodes_[std::size_t(t)].flags() & kSplit) continue; // split by force since it was queued
+        if (is_split(t)) continue; // split by force since it was queued
         if (count_ + chain_bound > budget && count_ + chain_cost(t) > budget) continue; // set aside
         split(t, false);
     }

@@ -205,6 +205,12 @@ private:
     // Pools sized once for the budget; the counts say what the frame uses.
     std::vector<Node, parallel::CacheAlignedAllocator<Node>> nodes_;
     std::vector<std::int32_t> children_;
+    // One bit per node, set when it is split (its kSplit flag): 64 nodes per
+    // word, so that the queue's stale entries (nodes split by force since
+    // they were queued: most of the pops at large budgets) are recognised
+    // without loading their nodes, and not prefetched for.
+    std::vector<std::uint64_t> split_bits_;
+    bool is_split(std::int32_t t) const { return split_bits_[std::size_t(t) >> 6] >> (t & 63) & 1u; }
     std::vector<Vertex> vertices_;
     std::size_t node_count_ = 0, vertex_count_ = 0;
     std::vector<std::uint32_t> indices_; // of the output triangles, 3 each
