@@ -134,6 +134,8 @@ void BM_RoamSplitFloor(benchmark::State& state) {
     const std::uint16_t* heights = g.heights().data();
     const std::size_t cols = std::size_t(g.cols());
     std::vector<std::vector<Tri>> buckets(kRoamBuckets);
+    // RoamMesh::priority's formula (private there), without the focus and
+    // padding cases; change both together.
     auto priority = [&](const Tri& t, float parent) {
         if (RoamViewWedge::outside(t.out[0], t.out[1], t.out[2]) || t.level >= finest) return -1.0f;
         const float mx = half_hs * float(t.c[1] + t.c[2]) - ex, mz = half_hs * float(t.r[1] + t.r[2]) - ez;
