@@ -95,7 +95,6 @@ void RoamMesh::reserve_for(int budget) {
     const std::size_t cap = 2 * std::size_t(budget) + std::size_t(budget) / 2 + 64 * std::size_t(finest_ + 2);
     if (cap > nodes_.size()) {
         nodes_ = decltype(nodes_)(cap);
-        children_.assign(cap, -1);
         split_bits_.assign((cap + 63) / 64, 0);
         vertices_.assign(cap / 2 + 4, Vertex{});
     }
@@ -242,7 +241,6 @@ void RoamMesh::prefetch_ahead(const std::vector<std::int32_t>& bucket) const {
     if (n > kOwnAhead && !is_split(bucket[n - 1 - kOwnAhead])) {
         const std::int32_t t = bucket[n - 1 - kOwnAhead];
         const Node& N = nodes_[std::size_t(t)];
-        prefetch(&children_[std::size_t(t)]);
         for (const std::int32_t x : N.nb)
             if (x >= 0) prefetch(&nodes_[std::size_t(x)]);
         for (const std::uint32_t v : N.v) prefetch(&vertices_[v]);
@@ -260,7 +258,6 @@ void RoamMesh::prefetch_ahead(const std::vector<std::int32_t>& bucket) const {
                 if (B.nb[0] >= 0) prefetch(&nodes_[std::size_t(B.nb[0])]);
                 if (B.nb[2] >= 0) prefetch(&nodes_[std::size_t(B.nb[2])]);
                 prefetch(&vertices_[B.v[0]]);
-                prefetch(&children_[std::size_t(N.nb[1])]);
                 if (int(B.level()) < variance_.stored_depth()) prefetch(variance_.data() + 2 * B.var_node());
             }
         }
@@ -300,7 +297,7 @@ void RoamMesh::make_children(std::int32_t t, std::int32_t c, std::uint32_t m, st
     relink(n2, c + 1);
     T.bits = bits | std::uint32_t(kSplit) << 27;
     split_bits_[std::size_t(t) >> 6] |= std::uint64_t(1) << (t & 63);
-    children_[std::size_t(t)] = c;
+    T.first_child = c;
     const Node parent{{}, {}, error, bits};
     const int level = parent.level() + 1;
     const unsigned flags = parent.flags();

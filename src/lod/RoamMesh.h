@@ -127,7 +127,12 @@ public:
     struct alignas(32) Node {
         std::array<std::int32_t, 3> nb;  // neighbours across (apex,v0), (v0,v1) = base, (v1,apex); -1 = border
         std::array<std::uint32_t, 3> v;  // vertex ids: apex, v0, v1 (hypotenuse v0-v1)
-        float error;                     // projected error in pixels, nested
+        // A leaf's projected error in pixels, nested; once split (kSplit), the
+        // index of its first child, so that the split writes no other line.
+        union {
+            float error;
+            std::int32_t first_child;
+        };
         // var_node | level << 22 | flags << 27, one word so that it is always
         // written and read whole.
         std::uint32_t bits;
@@ -148,7 +153,7 @@ public:
     std::span<const Node> nodes() const { return {nodes_.data(), node_count_}; }
     std::span<const Vertex> vertices() const { return {vertices_.data(), vertex_count_}; }
     // First child of a split node i (the second is child(i) + 1).
-    std::int32_t child(std::size_t i) const { return children_[i]; }
+    std::int32_t child(std::size_t i) const { return nodes_[i].first_child; }
 
 private:
     struct Rc {
@@ -204,7 +209,6 @@ private:
     std::optional<glm::dvec2> focus_;
     // Pools sized once for the budget; the counts say what the frame uses.
     std::vector<Node, parallel::CacheAlignedAllocator<Node>> nodes_;
-    std::vector<std::int32_t> children_;
     // One bit per node, set when it is split (its kSplit flag): 64 nodes per
     // word, so that the queue's stale entries (nodes split by force since
     // they were queued: most of the pops at large budgets) are recognised
