@@ -37,13 +37,15 @@
 //
 // Speed (the target: >= 10 M triangles/s per core). The rebuild is bound by
 // cache misses on the nodes it touches at random (the popped triangle, its
-// base neighbour and the outer neighbours it relinks), so a node is 32 bytes
-// and the two children of a split share one 64-byte line; the queue keeps no
-// links in the nodes (a bucket is a stack, a node split by force is dropped
-// when popped); the view wedge is tested once per vertex (outcodes) instead
-// of once per triangle; the cost of a forced-split chain is only worked out
-// within reach of the budget; the nodes next in line in the top bucket, and
-// what their splits will read, are prefetched several splits ahead.
+// base neighbour and the outer neighbours it relinks), so a node is 32 bytes,
+// the two children of a split share one 64-byte line and a split node keeps
+// its children's index where its error was (no other line written per
+// split); the queue keeps no links in the nodes (a bucket is a stack, a node
+// split by force is dropped when popped); the view wedge is tested once per
+// vertex (outcodes) instead of once per triangle; the cost of a forced-split
+// chain is only worked out within reach of the budget; the nodes next in line
+// in the top bucket, and what their splits will read, are prefetched several
+// splits ahead.
 #include "core/Camera.h"
 #include "core/MeshArrays.h"
 #include "core/Parallel.h"

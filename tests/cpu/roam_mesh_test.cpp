@@ -7,11 +7,13 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
 #include <set>
 #include <utility>
+#include <vector>
 
 using namespace overflight;
 
@@ -243,6 +245,44 @@ TEST(RoamMesh, FocusReachesTheFinestLevel) {
 }
 
 // Frames reuse the pools and give the same mesh for the same input.
+// The read access to the bintree: every split node's children are one level
+// finer, halve its hypotenuse at the midpoint (child 0 = (m, apex, v0), child
+// 1 = (m, v1, apex)) and are each split or a leaf of their own; every node but
+// the two roots is the child of exactly one split node.
+TEST(RoamMesh, ChildrenHalveTheirParent) {
+    const Terrain t = rough(65, 65);
+    RoamMesh roam(t);
+    roam.tessellate(camera_at(100, 100, 800, 45), 2000);
+    const auto nodes = roam.nodes();
+    const auto vertices = roam.vertices();
+    std::vector<int> parents(nodes.size(), 0);
+    int splits = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if (!(nodes[i].flags() & RoamMesh::kSplit)) continue;
+        ++splits;
+        const std::int32_t c = roam.child(i);
+        ASSERT_GE(c, 2);
+        ASSERT_LT(std::size_t(c) + 1, nodes.size());
+        const auto& n = nodes[i];
+        const auto& c0 = nodes[std::size_t(c)];
+        const auto& c1 = nodes[std::size_t(c) + 1];
+        EXPECT_EQ(c0.level(), n.level() + 1);
+        EXPECT_EQ(c1.level(), n.level() + 1);
+        const auto& v0 = vertices[n.v[1]];
+        const auto& v1 = vertices[n.v[2]];
+        const auto& m = vertices[c0.v[0]];
+        EXPECT_EQ(2 * m.row, v0.row + v1.row);
+        EXPECT_EQ(2 * m.col, v0.col + v1.col);
+        EXPECT_EQ(c0.v, (std::array<std::uint32_t, 3>{c0.v[0], n.v[0], n.v[1]}));
+        EXPECT_EQ(c1.v, (std::array<std::uint32_t, 3>{c0.v[0], n.v[2], n.v[0]}));
+        ++parents[std::size_t(c)];
+        ++parents[std::size_t(c) + 1];
+    }
+    EXPECT_GT(splits, 900);
+    EXPECT_EQ(parents[0] + parents[1], 0);
+    for (std::size_t i = 2; i < nodes.size(); ++i) EXPECT_EQ(parents[i], 1) << "node " << i;
+}
+
 TEST(RoamMesh, RepeatableAcrossFrames) {
     const Terrain t = rough(65, 65);
     RoamMesh roam(t);
