@@ -12,7 +12,8 @@
 # 3. Split-only ROAM at 65536 and 262144 triangles (`bench_roam`, Mt Rainier
 #    or the 1025² demo without the shared data, and the 4097² demo):
 #    M triangles/s; beside it the split loop's floor (BM_RoamSplitFloor: the
-#    same priorities and queue without keeping the mesh conforming).
+#    same priorities and queue without keeping the mesh conforming), also at
+#    16384 triangles on the 257² demo, where everything stays in the caches.
 # 4. The flight window against the headless composite of the same path
 #    (`fly --frames N` under xvfb-run when there is no display, then
 #    `fly --replay`), voxel method at 1280x720 and 1920x1080: the window's
@@ -49,7 +50,7 @@ for r in $(seq "$rounds"); do
     "$bin" bench demo --demo-size 4097 --size 3840x2160 --far 163840 --methods voxel --lod --frames "$frames" \
         --json >"$out/$r/lod.json"
     step "ROAM"
-    "$build/bench/bench_roam" --benchmark_filter='BM_Roam(Frame|SplitFloor)/[01]/(65536|262144)$' \
+    "$build/bench/bench_roam" --benchmark_filter='BM_Roam(Frame|SplitFloor)/([01]/(65536|262144)|2/16384)$' \
         --benchmark_repetitions=3 \
         --benchmark_report_aggregates_only=true --benchmark_format=json >"$out/$r/roam.json" 2>/dev/null
     for size in 1280x720 1920x1080; do
@@ -95,7 +96,7 @@ def measure(d):
                                                           True, "{:.3f}")
     m["LOD sky mask agreement (1080p pixels), %"] = (100 * acc.get("sky_mask_agreement", 0), "-", None, True,
                                                      "{:.3f}")
-    names = {"0": "Rainier (or 1025² demo)", "1": "4097² demo"}
+    names = {"0": "Rainier (or 1025² demo)", "1": "4097² demo", "2": "257² demo (in cache)"}
     for b in roam["benchmarks"]:
         if b.get("aggregate_name") != "median":
             continue
