@@ -139,14 +139,13 @@ void BM_RoamSplitFloor(benchmark::State& state) {
     const std::uint16_t* heights = g.heights().data();
     const std::size_t cols = std::size_t(g.cols());
     std::vector<std::vector<Tri>> buckets(kRoamBuckets);
-    // RoamMesh::priority's formula (private there), without the focus and
-    // padding cases; change both together.
+    // RoamMesh's priority, without the focus and padding cases.
     auto priority = [&](const Tri& t, float parent) {
         if (RoamViewWedge::outside(t.out[0], t.out[1], t.out[2]) || t.level >= finest) return -1.0f;
         const float mx = half_hs * float(t.c[1] + t.c[2]) - ex, mz = half_hs * float(t.r[1] + t.r[2]) - ez;
         const float my = half_vs * float(t.raw[1] + t.raw[2]) + y0 - ey;
-        const float d = std::max(std::sqrt(mx * mx + my * my + mz * mz) - radius[t.level], near);
-        return std::min(var.world(var.stored_node(t.node, t.level)) * focal / d, parent);
+        return roam_projected_error(var.world(var.stored_node(t.node, t.level)), mx, my, mz, radius[t.level], near,
+                                    focal, parent);
     };
     int max_bucket = 0;
     auto push = [&](const Tri& t) {

@@ -184,14 +184,12 @@ float RoamMesh::priority(const Vertex& a, const Vertex& b, const Vertex& c, int 
         return 0; // nothing of it reaches the screen
     }
     if (level >= finest_) return 0; // half cells are exact
-    // Projected error of the variance bound at the nearest point of the
-    // triangle's bounding circle around its hypotenuse midpoint.
+    // The hypotenuse midpoint, from the eye.
     const float mx = half_hs_ * float(b.col + c.col) - eye_x_;
     const float mz = half_hs_ * float(b.row + c.row) - eye_z_;
     const float my = half_vs_ * float(b.raw + c.raw) + y_offset_ - eye_y_;
-    const float dist = std::sqrt(mx * mx + my * my + mz * mz);
-    const float d = std::max(dist - radius_[std::size_t(level)], near_);
-    return std::min(variance_.world(var_node) * focal_px_ / d, parent_error);
+    return roam_projected_error(variance_.world(var_node), mx, my, mz, radius_[std::size_t(level)], near_, focal_px_,
+                                parent_error);
 }
 
 void RoamMesh::enqueue(std::int32_t t, const Node& n) {
