@@ -219,7 +219,7 @@ void RoamMesh::prefetch_split(std::int32_t t, const Node& n) const {
         if (x >= 0) prefetch(&nodes_[std::size_t(x)]);
     const Vertex& v0 = vertices_[n.v[1]];
     const Vertex& v1 = vertices_[n.v[2]];
-    prefetch(&heights_[std::size_t((v0.row + v1.row) / 2) * std::size_t(size_) + std::size_t((v0.col + v1.col) / 2)]);
+    prefetch(&heights_[midpoint_sample(v0, v1)]);
     const bool stored = int(n.level()) < variance_.stored_depth();
     if (stored) prefetch(variance_.data() + 2 * n.var_node());
     if (n.nb[1] < 0) return;
@@ -249,7 +249,7 @@ void RoamMesh::prefetch_ahead(const std::vector<std::int32_t>& bucket) const {
         const Node& N = nodes_[std::size_t(t)];
         const Vertex& v0 = vertices_[N.v[1]];
         const Vertex& v1 = vertices_[N.v[2]];
-        prefetch(&heights_[std::size_t((v0.row + v1.row) / 2) * std::size_t(size_) + std::size_t((v0.col + v1.col) / 2)]);
+        prefetch(&heights_[midpoint_sample(v0, v1)]);
         if (N.nb[1] >= 0) {
             const Node& B = nodes_[std::size_t(N.nb[1])];
             if (B.nb[1] == t) {

@@ -196,6 +196,10 @@ private:
     // overlap with the splits in between instead of stalling each split.
     void prefetch_ahead(const std::vector<std::int32_t>& bucket) const;
     Rc rc(std::uint32_t vid) const { return {vertices_[vid].row, vertices_[vid].col}; }
+    // Row-major index in grid() of the sample halfway between two vertices.
+    std::size_t midpoint_sample(const Vertex& a, const Vertex& b) const {
+        return std::size_t((a.row + b.row) / 2) * std::size_t(size_) + std::size_t((a.col + b.col) / 2);
+    }
     // Terrain::sample_normal (x, z in 1/32767) and color of one grid sample.
     struct SampleAttributes {
         Rgb8 color;
