@@ -69,6 +69,42 @@ void BM_RoamFrame(benchmark::State& state) {
     state.counters["triangles"] = double(triangles);
 }
 
+// A flight: the camera moves a quarter cell and turns a quarter degree per
+// frame (the vehicle at 60 fps), back and forth along 240 frames, so that
+// each frame starts from the previous frame's order-free threshold as in
+// `fly`. `refined_again`: the share of frames whose threshold did not hold
+// (refined a second time, wholly in order); `ordered`: the share of splits
+// made in priority order.
+void BM_RoamFlight(benchmark::State& state) {
+    const int which = int(state.range(0));
+    const int budget = int(state.range(1));
+    RoamMesh& r = roam(which);
+    const Terrain& t = terrain(which);
+    const Camera start = flight_camera(t);
+    MeshArrays mesh;
+    std::size_t triangles = 0, frames = 0, again = 0, splits = 0, ordered = 0;
+    for (auto _ : state) {
+        const int k = int(frames % 480);
+        const double step = k < 240 ? k : 480 - k;
+        Camera cam = start;
+        cam.heading += 0.25 * step;
+        const double a = cam.heading * std::acos(-1.0) / 180.0;
+        cam.eye.x += 0.25 * t.h_scale() * step * std::sin(a);
+        cam.eye.z -= 0.25 * t.h_scale() * step * std::cos(a);
+        const RoamStats s = r.tessellate(cam, budget);
+        r.write_mesh(mesh);
+        benchmark::DoNotOptimize(mesh.indices.data());
+        triangles += s.triangles;
+        again += s.passes == 2;
+        splits += s.splits;
+        ordered += s.ordered_splits;
+        ++frames;
+    }
+    state.SetItemsProcessed(std::int64_t(triangles));
+    state.counters["refined_again"] = double(again) / double(frames);
+    state.counters["ordered"] = double(ordered) / double(std::max<std::size_t>(splits, 1));
+}
+
 // Tessellation alone (the split loop with its priority buckets).
 void BM_RoamTessellate(benchmark::State& state) {
     const int which = int(state.range(0));
@@ -210,6 +246,7 @@ BENCHMARK(BM_RoamFrame)
     ->ArgsProduct({{0, 1}, {16384, 65536, 100000, 262144}})
     ->Args({2, 16384})
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RoamFlight)->ArgsProduct({{0, 1}, {65536, 262144}})->Iterations(240)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RoamSplitFloor)->ArgsProduct({{0, 1}, {65536, 262144}})->Args({2, 16384})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RoamTessellate)->ArgsProduct({{0, 1}, {65536, 100000}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RoamErrorCurve)

@@ -13,7 +13,9 @@
 #    or the 1025² demo without the shared data, and the 4097² demo):
 #    M triangles/s; beside it the split loop's floor (BM_RoamSplitFloor: the
 #    same priorities and queue without keeping the mesh conforming), also at
-#    16384 triangles on the 257² demo, where everything stays in the caches.
+#    16384 triangles on the 257² demo, where everything stays in the caches;
+#    and a 240-frame flight (BM_RoamFlight), each frame from the previous
+#    frame's order-free threshold, with the share of frames refined again.
 # 4. The flight window against the headless composite of the same path
 #    (`fly --frames N` under xvfb-run when there is no display, then
 #    `fly --replay`), voxel method at 1280x720 and 1920x1080: the window's
@@ -50,7 +52,7 @@ for r in $(seq "$rounds"); do
     "$bin" bench demo --demo-size 4097 --size 3840x2160 --far 163840 --methods voxel --lod --frames "$frames" \
         --json >"$out/$r/lod.json"
     step "ROAM"
-    "$build/bench/bench_roam" --benchmark_filter='BM_Roam(Frame|SplitFloor)/([01]/(65536|262144)|2/16384)$' \
+    "$build/bench/bench_roam" --benchmark_filter='BM_Roam(Frame|SplitFloor|Flight)/([01]/(65536|262144)|2/16384)(/iterations:240)?$' \
         --benchmark_repetitions=3 \
         --benchmark_report_aggregates_only=true --benchmark_format=json >"$out/$r/roam.json" 2>/dev/null
     for size in 1280x720 1920x1080; do
@@ -100,7 +102,13 @@ def measure(d):
     for b in roam["benchmarks"]:
         if b.get("aggregate_name") != "median":
             continue
-        bench, which, budget = b["run_name"].split("/")
+        bench, which, budget = b["run_name"].split("/")[:3]
+        if bench == "BM_RoamFlight":
+            m[f"ROAM flight (camera moving), {budget}, {names[which]}: M triangles/s"] = (
+                b["items_per_second"] / 1e6, "-", None, True, "{:.1f}")
+            m[f"ROAM flight, {budget}, {names[which]}: frames refined again in order, %"] = (
+                100 * b["refined_again"], "-", None, False, "{:.1f}")
+            continue
         if bench == "BM_RoamSplitFloor":
             m[f"ROAM's split floor (not conforming), {budget}, {names[which]}: M triangles/s"] = (
                 b["items_per_second"] / 1e6, "-", None, True, "{:.1f}")

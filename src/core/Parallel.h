@@ -18,6 +18,7 @@
 //                                            (default-constructed on first use)
 //   CacheAlignedAllocator<T>                 blocks on their own cache lines (no false
 //                                            sharing between threads)
+//   fetch_add, fetch_or, load, store         relaxed atomic access to a plain shared integer
 //
 // Bodies must be correct in any order and on any thread, as TBB requires.
 #if defined(__EMSCRIPTEN__) || defined(OVERFLIGHT_SERIAL)
@@ -98,5 +99,28 @@ template <typename T>
 using CacheAlignedAllocator = tbb::cache_aligned_allocator<T>;
 
 #endif
+
+// Relaxed atomic access to a plain integer or bool that bodies running at
+// once share (what std::atomic_ref does; the WebAssembly toolchain's library
+// lacks it). Ordering between bodies comes from the call that runs them.
+template <typename T>
+T fetch_add(T& x, T v) {
+    return __atomic_fetch_add(&x, v, __ATOMIC_RELAXED);
+}
+
+template <typename T>
+T fetch_or(T& x, T v) {
+    return __atomic_fetch_or(&x, v, __ATOMIC_RELAXED);
+}
+
+template <typename T>
+T load(const T& x) {
+    return __atomic_load_n(&x, __ATOMIC_RELAXED);
+}
+
+template <typename T>
+void store(T& x, T v) {
+    __atomic_store_n(&x, v, __ATOMIC_RELAXED);
+}
 
 } // namespace overflight::parallel
