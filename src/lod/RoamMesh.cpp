@@ -602,8 +602,14 @@ bool RoamMesh::refine(int budget, long long limit, int threshold, int& found, bo
     }
     found = threshold;
     const std::size_t order_free = seq.splits;
+    const bool finished = refine_in_order(budget, limit, found, probe);
+    ordered_ = seq.splits - order_free;
+    return finished;
+}
 
-
+bool RoamMesh::refine_in_order(int budget, long long limit, int& found, bool probe) {
+    Worker& seq = sequential();
+    const std::size_t chain_nodes = 4 * std::size_t(finest_ + 2);
     // Seed 003 sec. 5: "while (size of mesh < limit) split highest priority
     // triangle". A split whose forced chain would overshoot the budget is set
     // aside (the triangle stays a leaf for this frame) and the next one is
@@ -663,7 +669,6 @@ bool RoamMesh::refine(int budget, long long limit, int threshold, int& found, bo
         if (!room(seq)) break;
         split(seq, t, false);
     }
-    ordered_ = seq.splits - order_free;
     return !probe || max_bucket_ == 0;
 }
 

@@ -259,6 +259,8 @@ private:
     // passes `limit`; true when it refined everything before that.
     bool refine(int budget, long long limit, int threshold, int& found, bool probe = false);
     bool refine_order_free(long long limit);
+    // The buckets in priority order, from what refine_order_free left.
+    bool refine_in_order(int budget, long long limit, int& found, bool probe);
     void drain(Worker& w, long long limit, long long& added, bool& over);
     void queue_below_floor();
     // A queued leaf in the exact order used within a bucket: error, then the
