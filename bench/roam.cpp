@@ -73,8 +73,8 @@ void BM_RoamFrame(benchmark::State& state) {
 // frame (the vehicle at 60 fps), back and forth along 240 frames, so that
 // each frame starts from the previous frame's order-free threshold as in
 // `fly`. `refined_again`: the share of frames whose threshold did not hold
-// (refined a second time, wholly in order); `ordered`: the share of splits
-// made in priority order.
+// (found again by a pass in order, then refined a second time); `ordered`:
+// the share of splits made in priority order.
 void BM_RoamFlight(benchmark::State& state) {
     const int which = int(state.range(0));
     const int budget = int(state.range(1));

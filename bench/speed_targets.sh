@@ -52,7 +52,8 @@ for r in $(seq "$rounds"); do
     "$bin" bench demo --demo-size 4097 --size 3840x2160 --far 163840 --methods voxel --lod --frames "$frames" \
         --json >"$out/$r/lod.json"
     step "ROAM"
-    "$build/bench/bench_roam" --benchmark_filter='BM_Roam(Frame|SplitFloor|Flight)/([01]/(65536|262144)|2/16384)(/iterations:240)?$' \
+    roam_cases='BM_Roam(Frame|SplitFloor|Flight)/([01]/(65536|262144)|2/16384)(/iterations:240)?$'
+    "$build/bench/bench_roam" --benchmark_filter="$roam_cases" \
         --benchmark_repetitions=3 \
         --benchmark_report_aggregates_only=true --benchmark_format=json >"$out/$r/roam.json" 2>/dev/null
     for size in 1280x720 1920x1080; do
