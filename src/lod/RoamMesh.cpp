@@ -12,6 +12,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <tuple>
 
 namespace overflight {
 
@@ -132,10 +133,12 @@ void RoamMesh::reserve_for(int budget) {
     nodes_ = decltype(nodes_)(chunks * kNodeChunk);
     split_bits_.assign(nodes_.size() / 64, 0);
     chunk_owner_.assign(nodes_.size() / kNodeChunk, 0);
+    node_claims_.assign(nodes_.size() / kNodeChunk, ChunkClaim{});
     chunk_leaves_.assign(nodes_.size() / kNodeChunk, LeafCount{0});
     const std::size_t vertex_chunks = (need / 2 + need / 8) / kVertexChunk + workers_.size() + 8;
     vertices_.assign(vertex_chunks * kVertexChunk, Vertex{});
     vertex_used_.assign(vertex_chunks, 0);
+    vertex_claims_.assign(vertex_chunks, ChunkClaim{});
     vertex_base_.assign(vertex_chunks, 0);
 }
 
@@ -149,6 +152,7 @@ bool RoamMesh::room(Worker& w) {
         const std::size_t start = parallel::fetch_add(node_top_, kNodeChunk);
         if (start >= nodes_.size()) return false;
         chunk_owner_[start / kNodeChunk] = std::uint8_t(&w - workers_.data());
+        node_claims_[start / kNodeChunk] = {std::uint32_t(&w - workers_.data()), w.claims++};
         chunk_leaves_[start / kNodeChunk].leaves = 0;
         w.node_next = start;
         w.node_end = start + kNodeChunk;
@@ -157,6 +161,7 @@ bool RoamMesh::room(Worker& w) {
         close_chunks(w, true);
         const std::size_t start = parallel::fetch_add(vertex_top_, kVertexChunk);
         if (start >= vertices_.size()) return false;
+        vertex_claims_[start >> kVertexChunkShift] = {std::uint32_t(&w - workers_.data()), w.claims++};
         w.vertex_next = start;
         w.vertex_end = start + kVertexChunk;
     }
@@ -452,6 +457,7 @@ void RoamMesh::seed() {
         w.node_next = w.node_end = w.vertex_next = w.vertex_end = 0;
         w.count = 0;
         w.splits = w.forced = w.nodes = 0;
+        w.claims = 0;
         w.worklist.clear();
         w.window.clear();
         w.deferred.clear();
@@ -699,7 +705,8 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
         // LIFO, until the count reaches the line; the frame is then refined
         // again from the worklists up to the last bucket entered below it.
         passes = 2;
-        if (!refine(budget, limit, kRoamBuckets - 1, found, true)) refine(budget, limit, found, found);
+        if (!refine(budget, limit, kRoamBuckets - 1, found, true) && !refine(budget, limit, found, found))
+            refine(budget, limit, kRoamBuckets - 1, found); // the regions' chunks ran out: wholly in order
     }
     threshold_ = std::min(found + kThresholdMargin, kRoamBuckets - 1);
     for (Worker& w : workers_) {
@@ -708,8 +715,19 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
     }
     node_top_ = std::min(node_top_, nodes_.size());
     vertex_top_ = std::min(vertex_top_, vertices_.size());
+    // The output follows the chunks in the order of their workers and, for
+    // each worker, of its claims: each region's work is the same whatever
+    // the threads do, the order the chunks were claimed in is not.
+    auto by_worker = [](const std::vector<ChunkClaim>& claims, std::vector<std::uint32_t>& order, std::size_t n) {
+        order.resize(n);
+        std::iota(order.begin(), order.end(), 0u);
+        std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+            return std::tie(claims[a].worker, claims[a].seq) < std::tie(claims[b].worker, claims[b].seq);
+        });
+    };
+    by_worker(vertex_claims_, chunk_order_, (vertex_top_ + kVertexChunk - 1) >> kVertexChunkShift);
     std::uint32_t vertices = 0;
-    for (std::size_t k = 0; k < (vertex_top_ + kVertexChunk - 1) >> kVertexChunkShift; ++k) {
+    for (const std::uint32_t k : chunk_order_) {
         vertex_base_[k] = vertices;
         vertices += vertex_used_[k];
     }
@@ -725,11 +743,14 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
     // The leaves of each chunk were counted as they came and went, so that
     // the chunks write their triangles at once, each at its own offset.
     const std::size_t chunks = node_top_ / kNodeChunk;
-    chunk_first_.resize(chunks + 1);
-    chunk_first_[0] = 0;
-    for (std::size_t k = 0; k < chunks; ++k)
-        chunk_first_[k + 1] = chunk_first_[k] + std::size_t(chunk_leaves_[k].leaves);
-    indices_.resize(3 * chunk_first_[chunks]);
+    by_worker(node_claims_, chunk_order_, chunks);
+    chunk_first_.resize(chunks);
+    std::size_t triangles = 0;
+    for (const std::uint32_t k : chunk_order_) {
+        chunk_first_[k] = triangles;
+        triangles += std::size_t(chunk_leaves_[k].leaves);
+    }
+    indices_.resize(3 * triangles);
     chunk_stats_.resize(chunks);
     parallel::for_each_range(std::size_t(0), chunks, std::size_t(16), [&](std::size_t first, std::size_t last) {
         for (std::size_t k = first; k < last; ++k) {
@@ -752,7 +773,7 @@ RoamStats RoamMesh::tessellate(const Camera& camera, int budget, std::optional<g
         }
     });
     double sum = 0;
-    s.triangles = chunk_first_[chunks];
+    s.triangles = triangles;
     for (const ChunkStats& cs : chunk_stats_) {
         s.max_level = std::max(s.max_level, cs.max_level);
         s.visible_triangles += cs.visible;

@@ -219,6 +219,7 @@ private:
         long long count = 0; // output triangles added
         std::size_t splits = 0, forced = 0, nodes = 0;
         std::size_t recent = 0; // splits in the last frame refined from the worklists
+        std::uint32_t claims = 0; // chunks claimed this frame
         std::vector<std::int32_t> worklist; // leaves above the threshold
         std::vector<std::int32_t> window;   // leaves just below it, queued once the order matters
         std::vector<std::int32_t> deferred; // splits that would reach another region
@@ -327,6 +328,11 @@ private:
     };
     std::vector<LeafCount> chunk_leaves_;
     std::vector<std::size_t> chunk_first_;   // per node chunk: its first output triangle
+    struct ChunkClaim {
+        std::uint32_t worker = 0, seq = 0; // who claimed a chunk, and its how-manieth claim
+    };
+    std::vector<ChunkClaim> node_claims_, vertex_claims_;
+    std::vector<std::uint32_t> chunk_order_; // chunks by worker, then claim
     struct ChunkStats {
         int max_level = 0;
         std::size_t visible = 0;

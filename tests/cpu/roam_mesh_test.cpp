@@ -322,6 +322,13 @@ TEST(RoamMesh, RepeatableAcrossFrames) {
         const RoamStats first = fresh.tessellate(cam, budget);
         fresh.write_mesh(reference);
         EXPECT_EQ(first.passes, 2); // no threshold yet: found by a pass in order first
+        // The arrays too are the same for a fresh mesh, however its threads ran.
+        RoamMesh twin(t);
+        twin.tessellate(cam, budget);
+        MeshArrays twin_mesh;
+        twin.write_mesh(twin_mesh);
+        EXPECT_EQ(twin_mesh.indices, reference.indices) << budget;
+        EXPECT_EQ(twin_mesh.positions, reference.positions) << budget;
         const RoamStats again = fresh.tessellate(cam, budget);
         MeshArrays m;
         fresh.write_mesh(m);
