@@ -53,8 +53,9 @@
 // same line of a pool or of the split bits; the unused end of a chunk is
 // marked, and output vertex ids skip it. The leaves of each node chunk are
 // counted as splits come and go, so that the output pass writes the chunks'
-// triangles at once, each at its own offset. The meshes are the same on one
-// thread or two; only the order of the output arrays differs.
+// triangles at once, each at its own offset. The output follows the chunks
+// by worker, then by claim, so that the arrays are the same on one thread or
+// two, however the threads ran.
 //
 // No allocation per split: the pools are reserved for the budget once and
 // reused across frames (they grow only when the budget grows).
