@@ -132,7 +132,6 @@ void RoamMesh::reserve_for(int budget) {
     const std::size_t chunks = (need + need / 4) / kNodeChunk + workers_.size() + 8;
     nodes_ = decltype(nodes_)(chunks * kNodeChunk);
     split_bits_.assign(nodes_.size() / 64, 0);
-    chunk_owner_.assign(nodes_.size() / kNodeChunk, 0);
     node_claims_.assign(nodes_.size() / kNodeChunk, ChunkClaim{});
     chunk_leaves_.assign(nodes_.size() / kNodeChunk, LeafCount{0});
     const std::size_t vertex_chunks = (need / 2 + need / 8) / kVertexChunk + workers_.size() + 8;
@@ -151,7 +150,6 @@ bool RoamMesh::room(Worker& w) {
         close_chunks(w, false);
         const std::size_t start = parallel::fetch_add(node_top_, kNodeChunk);
         if (start >= nodes_.size()) return false;
-        chunk_owner_[start / kNodeChunk] = std::uint8_t(&w - workers_.data());
         node_claims_[start / kNodeChunk] = {std::uint32_t(&w - workers_.data()), w.claims++};
         chunk_leaves_[start / kNodeChunk].leaves = 0;
         w.node_next = start;
@@ -397,7 +395,7 @@ void RoamMesh::make_children(Worker& w, std::int32_t t, std::int32_t c, std::uin
     const std::uint64_t bit = std::uint64_t(1) << (t & 63);
     const std::size_t chunk = std::size_t(t) / kNodeChunk;
     const int was_leaf = !(bits >> 27 & kOutside);
-    if (chunk_owner_[chunk] == std::uint8_t(&w - workers_.data())) {
+    if (node_claims_[chunk].worker == std::uint32_t(&w - workers_.data())) {
         word |= bit;
         chunk_leaves_[chunk].leaves -= was_leaf;
     } else {

@@ -321,7 +321,6 @@ private:
     // without loading their nodes.
     std::vector<std::uint64_t> split_bits_;
     bool is_split(std::int32_t t) const { return parallel::load(split_bits_[std::size_t(t) >> 6]) >> (t & 63) & 1u; }
-    std::vector<std::uint8_t> chunk_owner_; // per node chunk: the worker it was handed to
     // Per node chunk: its output triangles, one line each (the two threads
     // update the counts of neighbouring chunks at every split).
     struct alignas(64) LeafCount {
