@@ -134,6 +134,100 @@ private:
     }
 }
 
+// The SliceRunBound of each lane for one run length, asked for all lanes at
+// once: when every usable lane reads the same pyramid level (all but the
+// groups of columns where the level changes with the heading), the four
+// corners of the lanes' boxes are gathered; otherwise each lane asks its own.
+class LaneRuns {
+public:
+    LaneRuns(const HeightPyramid& pyramid, const SliceRunBound* runs, int lanes) : runs_(runs) {
+        alignas(64) std::int64_t dx[kLanes] = {}, dz[kLanes] = {};
+        int level = -1;
+        for (int l = 0; l < lanes; ++l) {
+            if (!runs[l].usable()) continue;
+            usable_ |= 1u << l;
+            dx[l] = runs[l].dx();
+            dz[l] = runs[l].dz();
+            if (level < 0) level = runs[l].level();
+            uniform_ = uniform_ && runs[l].level() == level;
+        }
+        split64(dx, dxi_, dxf_);
+        split64(dz, dzi_, dzf_);
+        if (level < 0 || !uniform_) return;
+        const HeightPyramid::Level& lv = pyramid.level(level);
+        // As the terrain's heights: each read as the 32 bits ending with it.
+        base_ = reinterpret_cast<const char*>(lv.heights.data()) - 2;
+        level_ = _mm512_set1_epi32(level);
+        cols_ = _mm512_set1_epi32(lv.cols);
+        last_col_ = _mm512_set1_epi32(lv.cols - 1);
+        last_row_ = _mm512_set1_epi32(lv.rows - 1);
+    }
+    __mmask16 usable() const { return __mmask16(usable_); }
+
+    // SliceRunBound::max_height of the runs starting at each lane of `at`
+    // in `lanes` (usable ones), as floats; 0 elsewhere. gx, gz: scratch.
+    [[gnu::always_inline]] __m512 max_height(__mmask16 lanes, const Cursor& at, std::int64_t* gx,
+                                             std::int64_t* gz) const;
+
+private:
+    // The cells of the box's two corners along one axis: the first and last
+    // positions' samples (the 64-bit sum as in Cursor::step), ordered, on
+    // the level's grid, clamped to it.
+    [[gnu::always_inline]] void cells(__m512i i, __m512i f, __m512i di, __m512i df, __m512i last, __m512i& lo,
+                                      __m512i& hi) const {
+        const __m512i fe = _mm512_add_epi32(f, df);
+        const __m512i ie = _mm512_mask_add_epi32(_mm512_add_epi32(i, di), _mm512_cmplt_epu32_mask(fe, df),
+                                                 _mm512_add_epi32(i, di), _mm512_set1_epi32(1));
+        const __m512i zero = _mm512_setzero_si512();
+        lo = _mm512_min_epi32(_mm512_max_epi32(_mm512_srav_epi32(_mm512_min_epi32(i, ie), level_), zero), last);
+        hi = _mm512_min_epi32(_mm512_max_epi32(_mm512_srav_epi32(_mm512_max_epi32(i, ie), level_), zero), last);
+    }
+
+    const SliceRunBound* runs_;
+    unsigned usable_ = 0;
+    bool uniform_ = true;
+    __m512i dxi_, dxf_, dzi_, dzf_;
+    const void* base_ = nullptr;
+    __m512i level_, cols_, last_col_, last_row_;
+};
+
+
+[[gnu::always_inline]] inline __m512 LaneRuns::max_height(__mmask16 lanes, const Cursor& at, std::int64_t* gx,
+                                                          std::int64_t* gz) const {
+    if (!uniform_) {
+        alignas(64) float h[kLanes] = {};
+        at.get(gx, gz);
+        for (unsigned m = lanes; m; m &= m - 1) {
+            const int l = std::countr_zero(m);
+            h[l] = float(runs_[l].max_height(gx[l], gz[l]));
+        }
+        return _mm512_load_ps(h);
+    }
+    __m512i x0, x1, z0, z1;
+    cells(at.ix, at.fx, dxi_, dxf_, last_col_, x0, x1);
+    cells(at.iz, at.fz, dzi_, dzf_, last_row_, z0, z1);
+    const __m512i r0 = _mm512_mullo_epi32(z0, cols_), r1 = _mm512_mullo_epi32(z1, cols_);
+    auto read = [&](__m512i row, __m512i col) {
+        return _mm512_srli_epi32(
+            _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, _mm512_add_epi32(row, col), base_, 2), 16);
+    };
+    const __m512i h = _mm512_max_epi32(_mm512_max_epi32(read(r0, x0), read(r0, x1)),
+                                       _mm512_max_epi32(read(r1, x0), read(r1, x1)));
+    return _mm512_cvtepi32_ps(h);
+}
+
+// run_below (FloatingHorizonCast.inl) for the lanes in `lanes`, all at slice
+// k: the same operations in the same order, so the same outcome.
+[[gnu::always_inline]] inline __mmask16 runs_below(__mmask16 lanes, const float* ma, const float* mb, int k, int run,
+                                                   __m512 h, __m512 m) {
+    const int e = k + run - 1;
+    const __m512 hk = _mm512_mul_ps(h, _mm512_set1_ps(ma[k]));
+    const __m512 bound = _mm512_max_ps(_mm512_add_ps(hk, _mm512_set1_ps(mb[k])),
+                                       _mm512_add_ps(_mm512_mul_ps(h, _mm512_set1_ps(ma[e])), _mm512_set1_ps(mb[e])));
+    const __m512 slack = _mm512_mul_ps(_mm512_add_ps(hk, _mm512_set1_ps(std::abs(mb[k]))), _mm512_set1_ps(kRunSlack));
+    return _mm512_mask_cmp_ps_mask(lanes, _mm512_add_ps(bound, slack), m, _CMP_LE_OQ);
+}
+
 // Columns [c0, c1) (at most kLanes) of a block as cast_blocks<kBlock, true>
 // casts them without a light mask, into the block's scratch (color, slice:
 // column c0's entries; row stride kBlock). Lane l samples slice k while its
@@ -160,15 +254,11 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     const int k_end = f.slices.even;
 
     // Per lane, as BlockRay: the position at the group's slice k, its step,
-    // the run bounds, the last slice, the next slice where a test is due, the
-    // end of the current coarse run, and the horizon row when the current
-    // cast run started.
+    // the run bounds, the last slice and the first.
     alignas(64) std::int64_t gx[kLanes] = {}, gz[kLanes] = {}, sx[kLanes] = {}, sz[kLanes] = {};
-    alignas(64) int jv[kLanes] = {};
     alignas(64) float mjv[kLanes] = {};
     SliceRunBound coarse[kLanes], fine[kLanes];
-    int k1[kLanes] = {}, next[kLanes] = {}, kc[kLanes] = {}, j_before[kLanes] = {};
-    bool hot[kLanes] = {}, casting[kLanes] = {};
+    alignas(64) int k1[kLanes] = {}, next[kLanes] = {};
     unsigned live = 0;
     int k = INT_MAX;
     for (int l = 0; l < c1 - c0; ++l) {
@@ -184,7 +274,7 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
         coarse[l] = SliceRunBound(t.max_pyramid, f.skip_runs ? kRunCoarse : 0, sx[l], sz[l]);
         fine[l] = SliceRunBound(t.max_pyramid, f.skip_runs ? kRunFine : 0, sx[l], sz[l]);
         k1[l] = kl;
-        next[l] = kc[l] = k0;
+        next[l] = k0;
         mjv[l] = rows[0];
         live |= 1u << l;
         k = std::min(k, k0);
@@ -224,51 +314,56 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     std::uint32_t* const stripe_s = stripe_c + kLanes * stripe;
     __m512i j = _mm512_setzero_si512();
     __m512 mj = _mm512_load_ps(mjv);
+    // cast_run's state per lane: the last slice, the next slice where a test
+    // is due, the end of the current coarse run, the row when the current
+    // cast run started, and whether the last run painted / a run is cast.
+    const __m512i k1_v = _mm512_load_si512(k1);
+    __m512i next_v = _mm512_load_si512(next), kc_v = next_v, j_before = j;
+    __mmask16 hot = 0, casting = 0;
+    const LaneRuns coarse_runs(t.max_pyramid, coarse, c1 - c0), fine_runs(t.max_pyramid, fine, c1 - c0);
 
     long long visited = 0;
     unsigned active = 0; // lanes casting slice k
     int due = k;         // the first slice where a lane's test is due
     for (;;) {
         if (k == due) {
-            at.get(gx, gz);
-            _mm512_store_si512(jv, j);
-            _mm512_store_ps(mjv, mj);
-            for (unsigned m = live; m; m &= m - 1) { // cast_run's decisions, lane by lane
-                const int l = std::countr_zero(m);
-                const unsigned bit = 1u << l;
-                if (next[l] != k) continue;
-                if (casting[l]) {
-                    hot[l] = jv[l] != j_before[l];
-                    casting[l] = false;
-                    active &= ~bit;
-                }
-                if (k == kc[l]) {
-                    if (k >= k1[l] || smax[k] <= mjv[l]) {
-                        jend[l] = jv[l];
-                        live &= ~bit;
-                        continue;
-                    }
-                    if (!hot[l] && coarse[l].usable() && k + kRunCoarse <= k1[l] &&
-                        run_below(ma, mb, k, kRunCoarse, float(coarse[l].max_height(gx[l], gz[l])), mjv[l])) {
-                        next[l] = kc[l] = k + kRunCoarse;
-                        continue;
-                    }
-                    kc[l] = std::min(k + kRunCoarse, k1[l]);
-                }
-                if (!hot[l] && fine[l].usable() && k + kRunFine <= kc[l] &&
-                    run_below(ma, mb, k, kRunFine, float(fine[l].max_height(gx[l], gz[l])), mjv[l])) {
-                    next[l] = k + kRunFine;
-                    continue;
-                }
-                next[l] = std::min(k + kRunFine, kc[l]);
-                casting[l] = true;
-                j_before[l] = jv[l];
-                active |= bit;
-            }
+            // cast_run's decisions for the lanes whose test is due, all at
+            // slice k: the same tests as lane by lane, as masks.
+            const __m512i kv = _mm512_set1_epi32(k);
+            __mmask16 due_now = _mm512_mask_cmpeq_epi32_mask(__mmask16(live), next_v, kv);
+            const __mmask16 ended_run = due_now & casting;
+            hot = (hot & ~ended_run) | _mm512_mask_cmpneq_epi32_mask(ended_run, j, j_before);
+            casting &= ~ended_run;
+            active &= ~unsigned(ended_run);
+            __mmask16 at_coarse = _mm512_mask_cmpeq_epi32_mask(due_now, kc_v, kv);
+            __mmask16 done = _mm512_mask_cmpge_epi32_mask(at_coarse, kv, k1_v);
+            if (const __mmask16 open = at_coarse & ~done)
+                done |= _mm512_mask_cmp_ps_mask(open, _mm512_set1_ps(smax[k]), mj, _CMP_LE_OQ);
+            _mm512_mask_storeu_epi32(jend, done, j);
+            live &= ~unsigned(done);
+            at_coarse &= ~done;
+            due_now &= ~done;
+            const __m512i k_coarse = _mm512_set1_epi32(k + kRunCoarse);
+            __mmask16 skip = _mm512_mask_cmple_epi32_mask(at_coarse & ~hot & coarse_runs.usable(), k_coarse, k1_v);
+            if (skip)
+                skip = runs_below(skip, ma, mb, k, kRunCoarse, coarse_runs.max_height(skip, at, gx, gz), mj);
+            next_v = _mm512_mask_mov_epi32(next_v, skip, k_coarse);
+            kc_v = _mm512_mask_mov_epi32(kc_v, skip, k_coarse);
+            kc_v = _mm512_mask_min_epi32(kc_v, at_coarse & ~skip, k_coarse, k1_v);
+            due_now &= ~skip;
+            const __m512i k_fine = _mm512_set1_epi32(k + kRunFine);
+            skip = _mm512_mask_cmple_epi32_mask(due_now & ~hot & fine_runs.usable(), k_fine, kc_v);
+            if (skip) skip = runs_below(skip, ma, mb, k, kRunFine, fine_runs.max_height(skip, at, gx, gz), mj);
+            next_v = _mm512_mask_mov_epi32(next_v, skip, k_fine);
+            const __mmask16 cast = due_now & ~skip;
+            next_v = _mm512_mask_min_epi32(next_v, cast, k_fine, kc_v);
+            casting |= cast;
+            j_before = _mm512_mask_mov_epi32(j_before, cast, j);
+            active |= cast;
             if (live == 0) break;
-            due = INT_MAX;
-            for (unsigned m = live; m; m &= m - 1) due = std::min(due, next[std::countr_zero(m)]);
+            due = _mm512_mask_reduce_min_epi32(__mmask16(live), next_v);
             if (active == 0) { // every lane skips: on to the first test due
+                at.get(gx, gz);
                 at.set(gx, gz, sx, sz, due - k);
                 ahead.set(gx, gz, sx, sz, due - k + kAhead);
                 k = due;
@@ -351,13 +446,12 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             mj = _mm512_mask_mov_ps(mj, up, at_top);
             if (const unsigned full = _mm512_mask_cmpeq_epi32_mask(act, j, nrows_v)) [[unlikely]] {
                 // Columns full: done after this slice.
-                for (unsigned m = full; m; m &= m - 1) jend[std::countr_zero(m)] = nrows;
+                _mm512_mask_storeu_epi32(jend, __mmask16(full), nrows_v);
                 live &= ~full;
                 active &= ~full;
                 visited += std::popcount(full);
                 if (live == 0) break;
-                due = INT_MAX;
-                for (unsigned m = live; m; m &= m - 1) due = std::min(due, next[std::countr_zero(m)]);
+                due = _mm512_mask_reduce_min_epi32(__mmask16(live), next_v);
             }
         }
         visited += std::popcount(active);

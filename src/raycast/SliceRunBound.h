@@ -74,6 +74,11 @@ public:
 
     bool usable() const { return heights_ != nullptr; }
     int run() const { return run_; }
+    // The pyramid level read, and the 32.32 offset from a run's first
+    // position to its last (for casts that bound several runs at once).
+    int level() const { return level_; }
+    std::int64_t dx() const { return dx_; }
+    std::int64_t dz() const { return dz_; }
 
     // Max height over the run starting at (gx, gz): 32.32 fixed-point sample
     // coordinates, offset by half a sample for Nearest (so that >> 32 is the
