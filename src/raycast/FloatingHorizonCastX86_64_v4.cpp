@@ -228,6 +228,25 @@ private:
     return _mm512_mask_cmp_ps_mask(lanes, _mm512_add_ps(bound, slack), m, _CMP_LE_OQ);
 }
 
+// How far RowSearch's guess (sigma - m0) * inv_step, in float, can lie from
+// the row whose slope sigma is: the guess is non-decreasing in sigma, so a
+// sample whose guess t has a fraction clear of this margin lies above row
+// floor(t) and not above row floor(t) + 1 (m_floor(t) < sigma <= m_floor(t)+1),
+// as the table would say. Twice the largest distance of a row's own guess
+// from its index, and a little more for the rounding of 1 - margin.
+inline float row_guess_margin(const float* rows, int nrows, float m0, float inv_step) {
+    __m512 worst = _mm512_setzero_ps();
+    for (int r = 0; r < nrows; r += kLanes) {
+        const __mmask16 in = __mmask16(nrows - r >= kLanes ? 0xFFFFu : (1u << (nrows - r)) - 1);
+        const __m512 guess = _mm512_mul_ps(_mm512_sub_ps(_mm512_maskz_loadu_ps(in, rows + r), _mm512_set1_ps(m0)),
+                                           _mm512_set1_ps(inv_step));
+        const __m512 index = _mm512_cvtepi32_ps(
+            _mm512_add_epi32(_mm512_set1_epi32(r), _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)));
+        worst = _mm512_mask_max_ps(worst, in, worst, _mm512_abs_ps(_mm512_sub_ps(guess, index)));
+    }
+    return 2.0f * _mm512_reduce_max_ps(worst) + 0x1p-12f;
+}
+
 // Columns [c0, c1) (at most kLanes) of a block as cast_blocks<kBlock, true>
 // casts them without a light mask, into the block's scratch (color, slice:
 // column c0's entries; row stride kBlock). Lane l samples slice k while its
@@ -256,7 +275,6 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     // Per lane, as BlockRay: the position at the group's slice k, its step,
     // the run bounds, the last slice and the first.
     alignas(64) std::int64_t gx[kLanes] = {}, gz[kLanes] = {}, sx[kLanes] = {}, sz[kLanes] = {};
-    alignas(64) float mjv[kLanes] = {};
     SliceRunBound coarse[kLanes], fine[kLanes];
     alignas(64) int k1[kLanes] = {}, next[kLanes] = {};
     unsigned live = 0;
@@ -275,7 +293,6 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
         fine[l] = SliceRunBound(t.max_pyramid, f.skip_runs ? kRunFine : 0, sx[l], sz[l]);
         k1[l] = kl;
         next[l] = k0;
-        mjv[l] = rows[0];
         live |= 1u << l;
         k = std::min(k, k0);
     }
@@ -303,9 +320,12 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     const __m512i last_v = _mm512_set1_epi32(int(last_sample));
     const __m512i zero = _mm512_setzero_si512();
     const __m512i paint_rows_v = _mm512_set1_epi32(kPaintRows);
-    const __m512 nrows_f = _mm512_set1_ps(float(nrows));
     const RowSearch search(rows, nrows);
     const __m512 m0_v = _mm512_set1_ps(search.m0()), inv_step_v = _mm512_set1_ps(search.inv_step());
+    const __m512 guess_max = _mm512_set1_ps(float(nrows) + 0.5f);
+    const float row_margin_f = row_guess_margin(rows, nrows, search.m0(), search.inv_step());
+    const __m512 row_margin = _mm512_set1_ps(row_margin_f);
+    const __m512 row_margin_up = _mm512_set1_ps(1.0f - row_margin_f);
     // Each lane paints its own column-major stripe (kPaintRows rows of
     // padding, whole 16-row tiles), copied to the output at the end.
     const std::ptrdiff_t stripe = (nrows + kPaintRows + 15) / 16 * 16;
@@ -313,7 +333,6 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     std::uint32_t* const stripe_c = stripes.get(std::size_t(2 * kLanes * stripe));
     std::uint32_t* const stripe_s = stripe_c + kLanes * stripe;
     __m512i j = _mm512_setzero_si512();
-    __m512 mj = _mm512_load_ps(mjv);
     // cast_run's state per lane: the last slice, the next slice where a test
     // is due, the end of the current coarse run, the row when the current
     // cast run started, and whether the last run painted / a run is cast.
@@ -330,6 +349,7 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             // cast_run's decisions for the lanes whose test is due, all at
             // slice k: the same tests as lane by lane, as masks.
             const __m512i kv = _mm512_set1_epi32(k);
+            const __m512 mj = _mm512_i32gather_ps(j, rows, 4); // m_j, the horizon's slope
             __mmask16 due_now = _mm512_mask_cmpeq_epi32_mask(__mmask16(live), next_v, kv);
             const __mmask16 ended_run = due_now & casting;
             hot = (hot & ~ended_run) | _mm512_mask_cmpneq_epi32_mask(ended_run, j, j_before);
@@ -388,34 +408,31 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
         const __m512i word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), act, ci, colors, 4);
         const __m512 sigma = _mm512_add_ps(_mm512_mul_ps(_mm512_cvtepi32_ps(raw), _mm512_set1_ps(ma[k])),
                                            _mm512_set1_ps(mb[k]));
-        const __mmask16 up = _mm512_mask_cmp_ps_mask(act, sigma, mj, _CMP_GT_OQ);
-        if (up) {
-            // The first row not below each rising sample (RowSearch): its
-            // guess from the table's ends, checked against the rows on either
-            // side; rows[nrows] = +inf stops the search.
-            const __m512 t_guess = _mm512_min_ps(
-                _mm512_max_ps(_mm512_mul_ps(_mm512_sub_ps(sigma, m0_v), inv_step_v), _mm512_set1_ps(-1.0f)), nrows_f);
-            __m512i top = _mm512_min_epi32(_mm512_cvttps_epi32(_mm512_add_ps(t_guess, _mm512_set1_ps(1.0f))), nrows_v);
-            const __m512 below_top = _mm512_mask_i32gather_ps(_mm512_set1_ps(-INFINITY),
-                                                              _mm512_mask_cmpgt_epi32_mask(up, top, zero), 
-                                                              _mm512_sub_epi32(top, one), rows, 4);
-            __m512 at_top = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), up, top, rows, 4);
-            const __mmask16 off = _mm512_mask_cmp_ps_mask(up, below_top, sigma, _CMP_GE_OQ) |
-                                  _mm512_mask_cmp_ps_mask(up, at_top, sigma, _CMP_LT_OQ);
-            if (off) [[unlikely]] { // a guess off by a row or more
-                alignas(64) int tv[kLanes];
-                alignas(64) float sv[kLanes], av[kLanes];
-                _mm512_store_si512(tv, top);
-                _mm512_store_ps(sv, sigma);
-                _mm512_store_ps(av, at_top);
-                for (unsigned m = off; m; m &= m - 1) {
-                    const int l = std::countr_zero(m);
-                    tv[l] = search.first_not_below(sv[l], tv[l]);
-                    av[l] = rows[tv[l]];
-                }
-                top = _mm512_load_si512(tv);
-                at_top = _mm512_load_ps(av);
+        // The first row not below each sample (RowSearch), without reading
+        // the row table: the guess's fraction lies clear of the rows'
+        // (row_margin); only a lane whose guess lies within it asks the table.
+        // A sample rises (sigma > m_j) when that row lies above the horizon j.
+        const __m512 guess = _mm512_min_ps(
+            _mm512_max_ps(_mm512_mul_ps(_mm512_sub_ps(sigma, m0_v), inv_step_v), _mm512_set1_ps(-1.5f)), guess_max);
+        const __m512 guess_floor = _mm512_roundscale_ps(guess, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+        const __m512 fraction = _mm512_sub_ps(guess, guess_floor);
+        __m512i top = _mm512_min_epi32(
+            _mm512_max_epi32(_mm512_add_epi32(_mm512_cvttps_epi32(guess_floor), one), zero), nrows_v);
+        if (const __mmask16 near_row = _mm512_mask_cmp_ps_mask(act, fraction, row_margin, _CMP_LE_OQ) |
+                                       _mm512_mask_cmp_ps_mask(act, fraction, row_margin_up, _CMP_GE_OQ))
+            [[unlikely]] {
+            alignas(64) int tv[kLanes];
+            alignas(64) float sv[kLanes];
+            _mm512_store_si512(tv, top);
+            _mm512_store_ps(sv, sigma);
+            for (unsigned m = near_row; m; m &= m - 1) {
+                const int l = std::countr_zero(m);
+                tv[l] = search.first_not_below(sv[l], tv[l]);
             }
+            top = _mm512_load_si512(tv);
+        }
+        const __mmask16 up = _mm512_mask_cmpgt_epi32_mask(act, top, j);
+        if (up) {
             // Paint rows [j, top) (lines 10-14): kPaintRows from the horizon
             // up in every lane's stripe, painted or not (the rows a lane does
             // not reach are painted again or lie above its column's top), the
@@ -443,7 +460,6 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
                 }
             }
             j = _mm512_mask_mov_epi32(j, up, top);
-            mj = _mm512_mask_mov_ps(mj, up, at_top);
             if (const unsigned full = _mm512_mask_cmpeq_epi32_mask(act, j, nrows_v)) [[unlikely]] {
                 // Columns full: done after this slice.
                 _mm512_mask_storeu_epi32(jend, __mmask16(full), nrows_v);
