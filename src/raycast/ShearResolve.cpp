@@ -428,18 +428,94 @@ OVERFLIGHT_RESOLVE_AVX512 inline __m512i air_sky16(__m512i v, __m512i haze) {
 // operations in the same order, so the same bits; the tables are read
 // through lookup_near. kEven: as resolve_rows_avx2. A full block's pixels
 // go to the images straight from the registers.
-template <bool kTerrain, bool kSky, bool kEven>
-OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_air_avx512(const ShearResolveTables& t, const ShearBlock& blk, int H,
-                                                       int j0, int j1, const std::uint32_t* color,
-                                                       const std::uint32_t* slice, Rgb8* out_c, float* out_d,
-                                                       std::size_t W) {
-    const AerialTables& air = *t.air;
-    const __m512 one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
+// FogLanes on 16 lanes, the tables read through lookup_near: the same
+// operations in the same order, so the same bits.
+struct FogLanes16 {
+    const ShearResolveTables& t;
+
+    template <bool kTerrain, bool kSky>
+    OVERFLIGHT_RESOLVE_AVX512 __m512i shade(const ShearBlock&, int, __m512 m, __m512 len, __m512 d,
+                                            __mmask16 terrain, __m512i c) const {
+        const __m512 half = _mm512_set1_ps(0.5f);
+        __m512i fogged = _mm512_setzero_si512(), sky = _mm512_setzero_si512();
+        if constexpr (kTerrain) {
+            const __m512 x = _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), _mm512_set1_ps(t.fog->inv_step())), half);
+            const __m512i a = lookup_near(t.fog->entries(), FogTable::kEntries + 1,
+                                          _mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(FogTable::kEntries)));
+            const __m512i b = _mm512_sub_epi32(_mm512_set1_epi32(256), a);
+            const __m512i mask_rb = _mm512_set1_epi32(0xFF00FF), mask_g = _mm512_set1_epi32(0x00FF00);
+            const __m512i rb = _mm512_add_epi32(
+                _mm512_mullo_epi32(_mm512_and_si512(c, mask_rb), a),
+                _mm512_add_epi32(_mm512_mullo_epi32(_mm512_set1_epi32(int(t.fog_color & 0xFF00FFu)), b),
+                                 _mm512_set1_epi32(0x800080)));
+            const __m512i g = _mm512_add_epi32(
+                _mm512_mullo_epi32(_mm512_and_si512(c, mask_g), a),
+                _mm512_add_epi32(_mm512_mullo_epi32(_mm512_set1_epi32(int(t.fog_color & 0x00FF00u)), b),
+                                 _mm512_set1_epi32(0x008000)));
+            fogged = _mm512_or_si512(_mm512_and_si512(_mm512_srli_epi32(rb, 8), mask_rb),
+                                     _mm512_and_si512(_mm512_srli_epi32(g, 8), mask_g));
+        }
+        if constexpr (kSky) {
+            const __m512 x = _mm512_add_ps(
+                _mm512_mul_ps(_mm512_div_ps(m, len), _mm512_set1_ps(float(SkyTable::kEntries - 1))), half);
+            const __m512i e = _mm512_max_epi32(
+                _mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(SkyTable::kEntries - 1)), _mm512_setzero_si512());
+            sky = lookup_near(t.sky, SkyTable::kEntries, e);
+        }
+        return _mm512_mask_blend_epi32(terrain, sky, fogged);
+    }
+};
+
+// AirLanes on 16 lanes, the tables read through lookup_near.
+struct AirLanes16 {
+    const ShearResolveTables& t;
+
+    template <bool kTerrain, bool kSky>
+    OVERFLIGHT_RESOLVE_AVX512 __m512i shade(const ShearBlock& blk, int i, __m512 m, __m512 len, __m512 d,
+                                            __mmask16 terrain, __m512i c) const {
+        const AerialTables& air = *t.air;
+        const __m512 one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
+        const __m512 cos_sun =
+            _mm512_div_ps(_mm512_add_ps(_mm512_loadu_ps(blk.sun_dot + i), _mm512_mul_ps(m, _mm512_set1_ps(t.sun_y))),
+                          len);
+        const __m512 phase =
+            _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(cos_sun, one), _mm512_set1_ps(AerialTables::kPhaseScale)), half);
+        const __m512i p = clamp_lanes16(phase, float(AerialTables::kPhases - 1));
+        const __m512i h = lookup_near(air.haze(), AerialTables::kPhases, p);
+        __m512i pixel = _mm512_setzero_si512();
+        if constexpr (kSky) {
+            const __m512i q = clamp_lanes16(
+                _mm512_add_ps(_mm512_mul_ps(_mm512_div_ps(m, len), _mm512_set1_ps(float(AerialTables::kSkies - 1))),
+                              half),
+                float(AerialTables::kSkies - 1));
+            pixel = air_sky16(lookup_near(air.opacity(), AerialTables::kSkies, q), h);
+        }
+        if constexpr (kTerrain) {
+            const __m512i hj = clamp_lanes16(
+                _mm512_add_ps(_mm512_mul_ps(_mm512_sub_ps(_mm512_mul_ps(d, m), _mm512_set1_ps(air.dy_lo())),
+                                            _mm512_set1_ps(air.inv_dy_step())),
+                              half),
+                float(AerialTables::kHeights - 1));
+            const __m512 column = _mm512_castsi512_ps(lookup_near(air.column(), AerialTables::kHeights, hj));
+            const __m512 x = _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), column), half);
+            const __m512i w =
+                lookup_near(air.transmit(), AerialTables::kColumns + 1,
+                            _mm512_cvttps_epi32(_mm512_min_ps(x, _mm512_set1_ps(float(AerialTables::kColumns)))));
+            const __m512i lit = air_blend16(c, w, h);
+            pixel = kSky ? _mm512_mask_blend_epi32(terrain, pixel, lit) : lit;
+        }
+        return pixel;
+    }
+};
+
+// resolve_rows_avx2 on 16 lanes (FogLanes16 or AirLanes16).
+template <bool kTerrain, bool kSky, bool kEven, class Lanes>
+OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, const Lanes& lanes,
+                                                   const ShearBlock& blk, int H, int j0, int j1,
+                                                   const std::uint32_t* color, const std::uint32_t* slice,
+                                                   Rgb8* out_c, float* out_d, std::size_t W) {
+    const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 d_first = _mm512_set1_ps(t.d_first), d_step = _mm512_set1_ps(t.d_step);
-    const __m512 sun_y = _mm512_set1_ps(t.sun_y), phase_scale = _mm512_set1_ps(AerialTables::kPhaseScale);
-    const __m512 dy_lo = _mm512_set1_ps(air.dy_lo()), inv_dy_step = _mm512_set1_ps(air.inv_dy_step());
-    const __m512 columns = _mm512_set1_ps(float(AerialTables::kColumns));
-    const __m512 sky_scale = _mm512_set1_ps(float(AerialTables::kSkies - 1));
     // 16 packed colors to 48 bytes of Rgb8: 12 bytes per 128-bit lane, then the lanes joined.
     const __m512i rgb_bytes =
         _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
@@ -458,35 +534,18 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_air_avx512(const ShearResolveTables&
             const __mmask16 terrain =
                 kTerrain && kSky ? _mm512_cmpgt_epi32_mask(_mm512_loadu_si512(blk.jend + i), _mm512_set1_epi32(j))
                                  : __mmask16(kTerrain ? 0xFFFF : 0);
-            const __m512 cos_sun =
-                _mm512_div_ps(_mm512_add_ps(_mm512_loadu_ps(blk.sun_dot + i), _mm512_mul_ps(m, sun_y)), len);
-            const __m512 phase = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(cos_sun, one), phase_scale), half);
-            const __m512i p = clamp_lanes16(phase, float(AerialTables::kPhases - 1));
-            const __m512i h = lookup_near(air.haze(), AerialTables::kPhases, p);
-            __m512i pixel = _mm512_setzero_si512();
-            __m512 depth = one;
-            if constexpr (kSky) {
-                const __m512i q = clamp_lanes16(_mm512_add_ps(_mm512_mul_ps(_mm512_div_ps(m, len), sky_scale), half),
-                                                float(AerialTables::kSkies - 1));
-                pixel = air_sky16(lookup_near(air.opacity(), AerialTables::kSkies, q), h);
-            }
+            __m512 depth = one, d = one;
+            __m512i c = _mm512_setzero_si512();
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m512i k = _mm512_maskz_loadu_epi32(terrain, ss + i);
                 const __m512 z = _mm512_castsi512_ps(lookup_near(t.slice_depth, t.slices, k));
-                const __m512 d = kEven ? _mm512_add_ps(d_first, _mm512_mul_ps(d_step, _mm512_cvtepi32_ps(k)))
-                                       : _mm512_castsi512_ps(lookup_near(t.slice_d, t.slices, k));
-                const __m512i hj = clamp_lanes16(
-                    _mm512_add_ps(_mm512_mul_ps(_mm512_sub_ps(_mm512_mul_ps(d, m), dy_lo), inv_dy_step), half),
-                    float(AerialTables::kHeights - 1));
-                const __m512 column = _mm512_castsi512_ps(lookup_near(air.column(), AerialTables::kHeights, hj));
-                const __m512 x = _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), column), half);
-                const __m512i w = lookup_near(air.transmit(), AerialTables::kColumns + 1,
-                                              _mm512_cvttps_epi32(_mm512_min_ps(x, columns)));
-                const __m512i lit = air_blend16(_mm512_loadu_si512(sc + i), w, h);
-                pixel = kSky ? _mm512_mask_blend_epi32(terrain, pixel, lit) : lit;
+                d = kEven ? _mm512_add_ps(d_first, _mm512_mul_ps(d_step, _mm512_cvtepi32_ps(k)))
+                          : _mm512_castsi512_ps(lookup_near(t.slice_d, t.slices, k));
+                c = _mm512_loadu_si512(sc + i);
                 depth = kSky ? _mm512_mask_blend_ps(terrain, one, z) : z;
             }
+            const __m512i pixel = lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c);
             if (direct) {
                 const __m512i rgb = _mm512_permutexvar_epi32(rgb_words, _mm512_shuffle_epi8(pixel, rgb_bytes));
                 _mm512_mask_storeu_epi32(reinterpret_cast<char*>(out_c + row + i), __mmask16(0x0FFF), rgb);
@@ -660,12 +719,16 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     }();
     if (kernel == ResolveKernel::Auto) kernel = fastest;
 #if OVERFLIGHT_RESOLVE_AVX2
-    if (kernel == ResolveKernel::Avx512 && t.air) {
-        resolve_bands(t, H, jmin, jmax, [&](auto b) {
-            using B = decltype(b);
-            resolve_rows_air_avx512<B::kTerrain, B::kSky, B::kEven>(t, blk, H, b.j0, b.j1, color, slice, out_c,
-                                                                   out_d, W);
-        });
+    if (kernel == ResolveKernel::Avx512) {
+        const auto avx512 = [&](const auto& lanes) {
+            resolve_bands(t, H, jmin, jmax, [&](auto b) {
+                using B = decltype(b);
+                resolve_rows_avx512<B::kTerrain, B::kSky, B::kEven>(t, lanes, blk, H, b.j0, b.j1, color, slice,
+                                                                   out_c, out_d, W);
+            });
+        };
+        if (t.air) avx512(AirLanes16{t});
+        else avx512(FogLanes16{t});
         return;
     }
     const auto avx2 = [&](const auto& lanes) {
@@ -685,7 +748,7 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
         else avx2(FogLanes<WindowLookup<LoadLookup>>{t});
         return;
     }
-    if (kernel == ResolveKernel::Avx2 || kernel == ResolveKernel::Avx512) {
+    if (kernel == ResolveKernel::Avx2) {
         if (t.air) avx2(AirLanes<GatherLookup>{t});
         else avx2(FogLanes<GatherLookup>{t});
         return;

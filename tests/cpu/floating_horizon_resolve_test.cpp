@@ -68,7 +68,8 @@ TEST(ShearResolve, HandWorkedBlock) {
     const int H = 3, W = 5;
     const Rgb8 a{10, 20, 30}, b{40, 50, 60}, c{70, 80, 90}, e{1, 2, 3};
     for (ResolveKernel kernel :
-         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window}) {
+         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window,
+          ResolveKernel::Avx512}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(H);
         s.set(0, 0, pack_rgb(a), 0);
@@ -124,7 +125,8 @@ TEST(ShearResolve, FogAtTheEyeDistanceOfThePixel) {
     const std::uint32_t expected = fog_blend(surface, fog_color, fog.weight(125.0f));
     EXPECT_NE(expected, surface);
     for (ResolveKernel kernel :
-         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window}) {
+         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window,
+          ResolveKernel::Avx512}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(1);
         s.set(0, 0, surface, 0);
@@ -163,7 +165,8 @@ TEST(ShearResolve, AerialPerspectiveAtThePixel) {
     const std::uint32_t expected = air.terrain(surface, 125.0f, 75.0f, 0.96f);
     EXPECT_NE(expected, surface);
     for (ResolveKernel kernel :
-         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window}) {
+         {ResolveKernel::Portable, ResolveKernel::Avx2, ResolveKernel::Avx2Loads, ResolveKernel::Avx2Window,
+          ResolveKernel::Avx512}) {
         if (!resolve_kernel_available(kernel)) continue;
         Scratch s(2);
         s.set(1, 0, surface, 0);
