@@ -442,18 +442,20 @@ struct FogLanes16 {
             const __m512 x = _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), _mm512_set1_ps(t.fog->inv_step())), half);
             const __m512i a = lookup_near(t.fog->entries(), FogTable::kEntries + 1,
                                           _mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(FogTable::kEntries)));
-            const __m512i b = _mm512_sub_epi32(_mm512_set1_epi32(256), a);
-            const __m512i mask_rb = _mm512_set1_epi32(0xFF00FF), mask_g = _mm512_set1_epi32(0x00FF00);
-            const __m512i rb = _mm512_add_epi32(
-                _mm512_mullo_epi32(_mm512_and_si512(c, mask_rb), a),
-                _mm512_add_epi32(_mm512_mullo_epi32(_mm512_set1_epi32(int(t.fog_color & 0xFF00FFu)), b),
-                                 _mm512_set1_epi32(0x800080)));
-            const __m512i g = _mm512_add_epi32(
-                _mm512_mullo_epi32(_mm512_and_si512(c, mask_g), a),
-                _mm512_add_epi32(_mm512_mullo_epi32(_mm512_set1_epi32(int(t.fog_color & 0x00FF00u)), b),
-                                 _mm512_set1_epi32(0x008000)));
-            fogged = _mm512_or_si512(_mm512_and_si512(_mm512_srli_epi32(rb, 8), mask_rb),
-                                     _mm512_and_si512(_mm512_srli_epi32(g, 8), mask_g));
+            // fog_blend's (c a + f (256 - a) + 128) >> 8 per channel is
+            // f + ((c - f) a + 128) >> 8 (256 f is a multiple of 256), and
+            // mulhrs((c - f) 128, a) is that shift (as air_blend16).
+            const __m512i w = _mm512_or_si512(a, _mm512_slli_epi32(a, 16));
+            const __m512i rb = _mm512_set1_epi32(0x00FF00FF);
+            const __m512i f_rb = _mm512_set1_epi32(int(t.fog_color & 0xFF00FFu));
+            const __m512i f_g = _mm512_set1_epi32(int(t.fog_color >> 8 & 0xFFu));
+            const __m512i s_rb = _mm512_and_si512(c, rb);
+            const __m512i s_g = _mm512_and_si512(_mm512_srli_epi32(c, 8), _mm512_set1_epi32(0xFF));
+            const __m512i out_rb =
+                _mm512_add_epi16(f_rb, _mm512_mulhrs_epi16(_mm512_slli_epi16(_mm512_sub_epi16(s_rb, f_rb), 7), w));
+            const __m512i out_g =
+                _mm512_add_epi16(f_g, _mm512_mulhrs_epi16(_mm512_slli_epi16(_mm512_sub_epi16(s_g, f_g), 7), w));
+            fogged = _mm512_or_si512(out_rb, _mm512_slli_epi32(out_g, 8));
         }
         if constexpr (kSky) {
             const __m512 x = _mm512_add_ps(
