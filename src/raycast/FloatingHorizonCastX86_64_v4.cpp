@@ -35,6 +35,9 @@ constexpr int kLanes = 16;
 // gathers' loads wait on the terrain's lines (far past L2), and the window of
 // out-of-order execution holds only a couple of slices.
 constexpr int kAhead = 8;
+// Rows a lane paints from its horizon up in one store (the rows it does not
+// reach are painted again or lie above its column's top).
+constexpr int kLanePaintRows = 8;
 
 // 16 signed 64-bit values split into their high and low 32 bits (a 32.32
 // position's integer part and fraction), and joined back.
@@ -251,15 +254,16 @@ inline float row_guess_margin(const float* rows, int nrows, float m0, float inv_
 // casts them without a light mask, into the block's scratch (color, slice:
 // column c0's entries; row stride kBlock). Lane l samples slice k while its
 // column casts (a run that its tests did not skip): the samples of the lanes
-// are gathered, sigma compared with each lane's horizon as a mask, and for
-// the lanes that rise the first row not below the sample is found at once
-// (RowSearch's guess, checked against the rows on either side), so no lane
-// waits on another's painting. Lane l paints its own stripe (column-major:
-// kPaintRows rows from the horizon up in one store, as the scalar cast does
-// row by row); the stripes are transposed into the block at the end. The
-// tests of run skipping run per lane between slices, at the slices where
-// cast_run makes them, with the same outcome; the lanes all skip: on to the
-// first slice where a test is due.
+// are gathered, and the first row not below each sample found at once from
+// RowSearch's guess (row_guess_margin: the table is read only for a guess
+// close to a row), so that a lane rises when that row lies above its horizon
+// and no lane waits on another's painting. Lane l paints its own stripe
+// (column-major: kLanePaintRows rows from the horizon up in one store, as the
+// scalar cast does row by row); the stripes are transposed into the block at
+// the end. The tests of run skipping are cast_run's, due at the same slices
+// with the same outcome, made for all the lanes due at a slice at once
+// (LaneRuns, runs_below); when all lanes skip: on to the first slice where a
+// test is due.
 long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
                      std::uint32_t* slice, int* jend) {
     const Columns& cc = f.columns;
@@ -319,16 +323,16 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     const std::size_t last_sample = t.terrain.heights().size() - 1;
     const __m512i last_v = _mm512_set1_epi32(int(last_sample));
     const __m512i zero = _mm512_setzero_si512();
-    const __m512i paint_rows_v = _mm512_set1_epi32(kPaintRows);
+    const __m512i paint_rows_v = _mm512_set1_epi32(kLanePaintRows);
     const RowSearch search(rows, nrows);
     const __m512 m0_v = _mm512_set1_ps(search.m0()), inv_step_v = _mm512_set1_ps(search.inv_step());
     const __m512 guess_max = _mm512_set1_ps(float(nrows) + 0.5f);
     const float row_margin_f = row_guess_margin(rows, nrows, search.m0(), search.inv_step());
     const __m512 row_margin = _mm512_set1_ps(row_margin_f);
     const __m512 row_margin_up = _mm512_set1_ps(1.0f - row_margin_f);
-    // Each lane paints its own column-major stripe (kPaintRows rows of
+    // Each lane paints its own column-major stripe (kLanePaintRows rows of
     // padding, whole 16-row tiles), copied to the output at the end.
-    const std::ptrdiff_t stripe = (nrows + kPaintRows + 15) / 16 * 16;
+    const std::ptrdiff_t stripe = (nrows + kLanePaintRows + 15) / 16 * 16;
     thread_local Stripes stripes;
     std::uint32_t* const stripe_c = stripes.get(std::size_t(2 * kLanes * stripe));
     std::uint32_t* const stripe_s = stripe_c + kLanes * stripe;
@@ -433,19 +437,18 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
         }
         const __mmask16 up = _mm512_mask_cmpgt_epi32_mask(act, top, j);
         if (up) {
-            // Paint rows [j, top) (lines 10-14): kPaintRows from the horizon
-            // up in every lane's stripe, painted or not (the rows a lane does
-            // not reach are painted again or lie above its column's top), the
-            // rest for the rare taller spans.
+            // Paint rows [j, top) (lines 10-14): kLanePaintRows from the
+            // horizon up in every lane's stripe, painted or not, the rest for
+            // the rare taller spans.
             alignas(64) int jv_now[kLanes];
             alignas(64) std::uint32_t wv[kLanes];
             _mm512_store_si512(jv_now, j);
             _mm512_store_si512(wv, word);
-            const __m128i kv = _mm_set1_epi32(k);
+            const __m256i kv = _mm256_set1_epi32(k);
             for (int l = 0; l < kLanes; ++l) {
                 const std::ptrdiff_t p = std::ptrdiff_t(l) * stripe + jv_now[l];
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_c + p), _mm_set1_epi32(int(wv[l])));
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(stripe_s + p), kv);
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_c + p), _mm256_set1_epi32(int(wv[l])));
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_s + p), kv);
             }
             if (const unsigned tall = _mm512_mask_cmpgt_epi32_mask(up, _mm512_sub_epi32(top, j), paint_rows_v))
                 [[unlikely]] {
@@ -453,9 +456,10 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
                 _mm512_store_si512(tv, top);
                 for (unsigned m = tall; m; m &= m - 1) {
                     const int l = std::countr_zero(m);
-                    for (int r = jv_now[l] + kPaintRows; r < tv[l]; ++r) {
-                        stripe_c[std::ptrdiff_t(l) * stripe + r] = wv[l];
-                        stripe_s[std::ptrdiff_t(l) * stripe + r] = std::uint32_t(k);
+                    const __m256i c = _mm256_set1_epi32(int(wv[l]));
+                    for (int r = jv_now[l] + kLanePaintRows; r < tv[l]; r += kLanePaintRows) {
+                        _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_c + std::ptrdiff_t(l) * stripe + r), c);
+                        _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_s + std::ptrdiff_t(l) * stripe + r), kv);
                     }
                 }
             }
