@@ -346,6 +346,10 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     const LaneRuns coarse_runs(t.max_pyramid, coarse, c1 - c0), fine_runs(t.max_pyramid, fine, c1 - c0);
 
     long long visited = 0;
+    // The samples of slice k, gathered at the end of slice k - 1 for the
+    // lanes in `fetched` (the rest when their run starts).
+    __m512i next_raw = _mm512_setzero_si512(), next_word = next_raw;
+    __mmask16 fetched = 0;
     unsigned active = 0; // lanes casting slice k
     int due = k;         // the first slice where a lane's test is due
     for (;;) {
@@ -391,6 +395,7 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
                 at.set(gx, gz, sx, sz, due - k);
                 ahead.set(gx, gz, sx, sz, due - k + kAhead);
                 k = due;
+                fetched = 0;
                 continue;
             }
         }
@@ -406,10 +411,13 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
                 _mm_prefetch(reinterpret_cast<const char*>(colors + pv[l]), _MM_HINT_T0);
             }
         }
-        const __m512i ci = at.sample(cols_v);
-        const __m512i raw = _mm512_srli_epi32(
-            _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), act, ci, height_base, 2), 16);
-        const __m512i word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), act, ci, colors, 4);
+        if (const __mmask16 fresh = act & ~fetched) { // lanes that started a run at this slice
+            const __m512i ci = at.sample(cols_v);
+            next_raw = _mm512_mask_i32gather_epi32(next_raw, fresh, ci, height_base, 2);
+            next_word = _mm512_mask_i32gather_epi32(next_word, fresh, ci, colors, 4);
+        }
+        const __m512i raw = _mm512_srli_epi32(next_raw, 16);
+        const __m512i word = next_word;
         const __m512 sigma = _mm512_add_ps(_mm512_mul_ps(_mm512_cvtepi32_ps(raw), _mm512_set1_ps(ma[k])),
                                            _mm512_set1_ps(mb[k]));
         // The first row not below each sample (RowSearch), without reading
@@ -483,7 +491,15 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             at.set(gx, gz, sx, sz, due - k);
             ahead.set(gx, gz, sx, sz, due - k + kAhead);
             k = due;
+            fetched = 0;
+            continue;
         }
+        // The next slice's samples of the lanes casting now, asked for before
+        // this slice's painting retires (clamped: a lane may end here).
+        const __m512i ci = _mm512_min_epu32(at.sample(cols_v), last_v);
+        next_raw = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), __mmask16(active), ci, height_base, 2);
+        next_word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), __mmask16(active), ci, colors, 4);
+        fetched = __mmask16(active);
     }
     // The stripes to the block's rows [0, jend) of each column, 16 x 16 tiles transposed.
     int top = 0;
