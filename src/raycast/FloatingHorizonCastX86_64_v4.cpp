@@ -512,7 +512,11 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             __m512i v[16];
             for (int l = 0; l < 16; ++l) v[l] = _mm512_loadu_si512(from + l * stripe);
             transpose16(v);
-            for (int r = 0; r < std::min(16, top - r0); ++r) _mm512_mask_storeu_epi32(to + r * kBlock, lanes, v[r]);
+            const int n = std::min(16, top - r0);
+            if (lanes == 0xFFFF)
+                for (int r = 0; r < n; ++r) _mm512_storeu_si512(to + r * kBlock, v[r]);
+            else
+                for (int r = 0; r < n; ++r) _mm512_mask_storeu_epi32(to + r * kBlock, lanes, v[r]);
         }
     return visited;
 }
