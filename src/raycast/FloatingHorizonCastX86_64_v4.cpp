@@ -194,7 +194,6 @@ private:
     __m512i level_, cols_, last_col_, last_row_;
 };
 
-
 [[gnu::always_inline]] inline __m512 LaneRuns::max_height(__mmask16 lanes, const Cursor& at, std::int64_t* gx,
                                                           std::int64_t* gz) const {
     if (!uniform_) {
@@ -209,14 +208,17 @@ private:
     __m512i x0, x1, z0, z1;
     cells(at.ix, at.fx, dxi_, dxf_, last_col_, x0, x1);
     cells(at.iz, at.fz, dzi_, dzf_, last_row_, z0, z1);
-    const __m512i r0 = _mm512_mullo_epi32(z0, cols_), r1 = _mm512_mullo_epi32(z1, cols_);
-    auto read = [&](__m512i row, __m512i col) {
-        return _mm512_srli_epi32(
-            _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, _mm512_add_epi32(row, col), base_, 2), 16);
+    // x1 is x0 or x0 + 1 (the box covers at most 2 x 2 cells), so one read
+    // of the 32 bits ending with (x1, row) holds both cells of the row.
+    const __mmask16 two = _mm512_cmpgt_epi32_mask(x1, x0);
+    const __m512i low = _mm512_set1_epi32(0xFFFF);
+    auto read = [&](__m512i z) {
+        const __m512i at = _mm512_add_epi32(_mm512_mullo_epi32(z, cols_), x1);
+        const __m512i v = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, at, base_, 2);
+        return _mm512_mask_max_epi32(_mm512_srli_epi32(v, 16), two, _mm512_srli_epi32(v, 16),
+                                     _mm512_and_si512(v, low));
     };
-    const __m512i h = _mm512_max_epi32(_mm512_max_epi32(read(r0, x0), read(r0, x1)),
-                                       _mm512_max_epi32(read(r1, x0), read(r1, x1)));
-    return _mm512_cvtepi32_ps(h);
+    return _mm512_cvtepi32_ps(_mm512_max_epi32(read(z0), read(z1)));
 }
 
 // run_below (FloatingHorizonCast.inl) for the lanes in `lanes`, all at slice
@@ -243,8 +245,8 @@ inline float row_guess_margin(const float* rows, int nrows, float m0, float inv_
         const __mmask16 in = __mmask16(nrows - r >= kLanes ? 0xFFFFu : (1u << (nrows - r)) - 1);
         const __m512 guess = _mm512_mul_ps(_mm512_sub_ps(_mm512_maskz_loadu_ps(in, rows + r), _mm512_set1_ps(m0)),
                                            _mm512_set1_ps(inv_step));
-        const __m512 index = _mm512_cvtepi32_ps(
-            _mm512_add_epi32(_mm512_set1_epi32(r), _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)));
+        const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+        const __m512 index = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(r), lane));
         worst = _mm512_mask_max_ps(worst, in, worst, _mm512_abs_ps(_mm512_sub_ps(guess, index)));
     }
     return 2.0f * _mm512_reduce_max_ps(worst) + 0x1p-12f;

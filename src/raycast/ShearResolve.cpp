@@ -439,9 +439,11 @@ struct FogLanes16 {
         const __m512 half = _mm512_set1_ps(0.5f);
         __m512i fogged = _mm512_setzero_si512(), sky = _mm512_setzero_si512();
         if constexpr (kTerrain) {
-            const __m512 x = _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), _mm512_set1_ps(t.fog->inv_step())), half);
-            const __m512i a = lookup_near(t.fog->entries(), FogTable::kEntries + 1,
-                                          _mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(FogTable::kEntries)));
+            const __m512 x =
+                _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), _mm512_set1_ps(t.fog->inv_step())), half);
+            const __m512i a =
+                lookup_near(t.fog->entries(), FogTable::kEntries + 1,
+                            _mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(FogTable::kEntries)));
             // fog_blend's (c a + f (256 - a) + 128) >> 8 per channel is
             // f + ((c - f) a + 128) >> 8 (256 f is a multiple of 256), and
             // mulhrs((c - f) 128, a) is that shift (as air_blend16).
@@ -460,8 +462,9 @@ struct FogLanes16 {
         if constexpr (kSky) {
             const __m512 x = _mm512_add_ps(
                 _mm512_mul_ps(_mm512_div_ps(m, len), _mm512_set1_ps(float(SkyTable::kEntries - 1))), half);
-            const __m512i e = _mm512_max_epi32(
-                _mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(SkyTable::kEntries - 1)), _mm512_setzero_si512());
+            const __m512i e =
+                _mm512_max_epi32(_mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(SkyTable::kEntries - 1)),
+                                 _mm512_setzero_si512());
             sky = lookup_near(t.sky, SkyTable::kEntries, e);
         }
         return _mm512_mask_blend_epi32(terrain, sky, fogged);

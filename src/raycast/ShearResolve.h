@@ -58,9 +58,9 @@ struct ShearBlock {
 // where a lane falls outside (LaneLookup.h); where gathers are slow
 // (cpu_gathers_slow) Auto picks Avx2Window for the resolve and Avx2Loads for
 // the imagery's drape. Avx512 (AVX-512 F, BW, DQ and VL) has kernels of its
-// own for the aerial perspective (16 lanes, the tables read from windows
-// permuted in registers) and in the imagery's drape (ShearDrape.h); for
-// GL_EXP fog the resolve runs its AVX2 kernel. Simd128 is WebAssembly's (a
+// own for the aerial perspective and for GL_EXP fog with the sky gradient
+// (16 lanes, the tables read from windows permuted in registers) and in the
+// imagery's drape (ShearDrape.h). Simd128 is WebAssembly's (a
 // build with -msimd128): the GL_EXP fog and sky gradient in 4 lanes; the
 // aerial perspective runs the portable kernel there.
 bool resolve_kernel_available(ResolveKernel kernel);
