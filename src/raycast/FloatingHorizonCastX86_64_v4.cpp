@@ -213,8 +213,8 @@ private:
     const __mmask16 two = _mm512_cmpgt_epi32_mask(x1, x0);
     const __m512i low = _mm512_set1_epi32(0xFFFF);
     auto read = [&](__m512i z) {
-        const __m512i at = _mm512_add_epi32(_mm512_mullo_epi32(z, cols_), x1);
-        const __m512i v = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, at, base_, 2);
+        const __m512i cell = _mm512_add_epi32(_mm512_mullo_epi32(z, cols_), x1);
+        const __m512i v = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, cell, base_, 2);
         return _mm512_mask_max_epi32(_mm512_srli_epi32(v, 16), two, _mm512_srli_epi32(v, 16),
                                      _mm512_and_si512(v, low));
     };
