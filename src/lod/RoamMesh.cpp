@@ -631,13 +631,13 @@ bool RoamMesh::refine_in_order(int budget, long long limit, int& found, bool pro
             continue;
         }
         if (max_bucket_ == 0) break;
+        if (max_bucket_ < entered) { // a bucket entered for the first time
+            entered = max_bucket_;
+            if (seq.count <= limit) found = entered;
+        }
         if (probe) {
             // Each bucket LIFO: only the bucket the budget ends in needs the
             // exact order, and the probe stops before it gets there.
-            if (max_bucket_ < entered) {
-                entered = max_bucket_;
-                if (seq.count <= limit) found = entered;
-            }
             auto& bucket = buckets_[std::size_t(max_bucket_)];
             const std::int32_t t = bucket.back();
             bucket.pop_back();
@@ -654,10 +654,6 @@ bool RoamMesh::refine_in_order(int budget, long long limit, int& found, bool pro
                 for (const Queued& q : heap_) buckets_[std::size_t(heap_bucket_)].push_back(q.node);
             heap_.clear();
             heap_bucket_ = max_bucket_;
-            if (max_bucket_ < entered) {
-                entered = max_bucket_;
-                if (seq.count <= limit) found = entered;
-            }
             auto& bucket = buckets_[std::size_t(max_bucket_)];
             for (const std::int32_t t : bucket)
                 if (!is_split(t)) heap_.push_back(queued(t));
