@@ -9,6 +9,7 @@
 // BM_VoxelImagery* drape imagery at twice the island's resolution
 // (raycast/ImageryTexels.h): their ratio to BM_Voxel* is the imagery's cost;
 // BM_VoxelAllLooks adds the sun's light, shadows and the atmosphere.
+// BM_VoxelLod4K: the distance LOD at 3840x2160, far 16384 cells.
 #include "core/DemoIsland.h"
 #include "core/ImageryPyramid.h"
 #include "core/SunLight.h"
@@ -81,14 +82,21 @@ const ImageryPyramid& island_imagery() {
 // imagery: draped over the painted samples (FloatingHorizon::set_imagery).
 // shadows: sun-lit colors with the terrain's shadows of a low sun and their
 // light mask (front faces change light where the mesh does: FrontFace.h).
+// uhd: the view of the distance LOD's speed goal, 3840x2160 with far 16384
+// cells (`bench --size 3840x2160 --far 163840 --lod`).
 void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool atmosphere = false,
-              bool imagery = false, bool shadows = false) {
+              bool imagery = false, bool shadows = false, bool uhd = false) {
     const DataSet& ds = island();
     const int threads = int(state.range(0));
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     FloatingHorizon fh(ds.terrain);
     if (imagery) fh.set_imagery(&island_imagery());
-    const Camera cam = bench_camera(ds, proj);
+    Camera cam = bench_camera(ds, proj);
+    if (uhd) {
+        cam.width = 3840;
+        cam.height = 2160;
+        cam.far = 16384 * ds.terrain.h_scale();
+    }
     Environment env = ds.environment;
     env.atmosphere = atmosphere;
     TerrainLighting lighting(ds.terrain);
@@ -191,6 +199,11 @@ void BM_VoxelLod(benchmark::State& s) {
     o.lod = true;
     run_fast(s, Projection::Shear, o);
 }
+void BM_VoxelLod4K(benchmark::State& s) {
+    RaycastOptions o;
+    o.lod = true;
+    run_fast(s, Projection::Shear, o, false, false, false, true);
+}
 void BM_VoxelNearStep(benchmark::State& s) {
     RaycastOptions o;
     o.near_step_pixels = 0.5;
@@ -236,6 +249,7 @@ BENCHMARK(BM_VoxelAllLooksLoads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)-
 BENCHMARK(BM_VoxelAllLooksWindow)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelBilinear)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelLod)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VoxelLod4K)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelNearStep)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelTiltExact)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_VoxelTiltGuedes)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
