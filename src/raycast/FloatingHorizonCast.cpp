@@ -31,6 +31,21 @@ void CastTerrain::set_colors(const std::vector<Rgb8>* sample_colors, const Light
     });
     level_colors[0] = colors.data();
     lod_pyramid.reset();
+    if (!records.empty()) {
+        records.clear();
+        prepare_records();
+    }
+}
+
+void CastTerrain::prepare_records() {
+    if (!records.empty()) return;
+    records.resize(colors.size());
+    const std::uint16_t* heights = terrain.heights().data();
+    parallel::for_each_range(std::size_t(0), colors.size(), std::size_t(1) << 16,
+                             [&](std::size_t begin, std::size_t end) {
+                                 for (std::size_t i = begin; i < end; ++i)
+                                     records[i] = colors[i] | (std::uint64_t(heights[i]) << 32);
+                             });
 }
 
 int CastTerrain::lod_levels() {
@@ -73,13 +88,22 @@ bool cast_kernel_available(CastKernel kernel) {
     return false;
 }
 
+bool cast_reads_records(const RaycastOptions& options) {
+#if OVERFLIGHT_CAST_X86_64_V4
+    static const bool v4 = cast_kernel_available(CastKernel::X86_64_v4);
+    return v4 && (options.kernel == CastKernel::Auto || options.kernel == CastKernel::X86_64_v4);
+#else
+    (void)options;
+    return false;
+#endif
+}
+
 long long cast_columns(const CastTerrain& terrain, const CastFrame& frame, const RaycastOptions& options, int c0,
                        int c1, std::uint32_t* color, std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride,
                        std::ptrdiff_t row_stride) {
     if (c1 - c0 > kBlock) throw std::logic_error("FloatingHorizon: more columns than one block");
 #if OVERFLIGHT_CAST_X86_64_V4
-    static const bool v4 = cast_kernel_available(CastKernel::X86_64_v4);
-    if (v4 && (options.kernel == CastKernel::Auto || options.kernel == CastKernel::X86_64_v4))
+    if (cast_reads_records(options))
         return cast_columns_x86_64_v4(terrain, frame, options.surface, c0, c1, color, slice, jend, col_stride,
                                       row_stride);
 #endif

@@ -112,6 +112,20 @@ private:
     std::size_t size_ = 0;
 };
 
+// The records (CastTerrain::records) of the lanes in m at samples idx, as
+// two gathers of 8: their low halves (packed colors) and high halves (raw
+// heights); 0 in the other lanes.
+[[gnu::always_inline]] inline void gather_records(__mmask16 m, __m512i idx, const std::uint64_t* rec, __m512i& word,
+                                                  __m512i& raw) {
+    const __m512i a = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), __mmask8(m),
+                                                  _mm512_castsi512_si256(idx), rec, 8);
+    const __m512i b = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), __mmask8(m >> 8),
+                                                  _mm512_extracti64x4_epi64(idx, 1), rec, 8);
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    word = _mm512_permutex2var_epi32(a, even, b);
+    raw = _mm512_permutex2var_epi32(a, _mm512_add_epi32(even, _mm512_set1_epi32(1)), b);
+}
+
 // A 16 x 16 tile of 32-bit values transposed: v[i] element e becomes v[e] element i.
 [[gnu::always_inline]] inline void transpose16(__m512i* v) {
     __m512i t[16], u[16];
@@ -256,7 +270,7 @@ inline float row_guess_margin(const float* rows, int nrows, float m0, float inv_
 // casts them without a light mask, into the block's scratch (color, slice:
 // column c0's entries; row stride kBlock). Lane l samples slice k while its
 // column casts (a run that its tests did not skip): the samples of the lanes
-// are gathered, and the first row not below each sample found at once from
+// are gathered as {color, height} records (CastTerrain::records), and the first row not below each sample found at once from
 // RowSearch's guess (row_guess_margin: the table is read only for a guess
 // close to a row), so that a lane rises when that row lies above its horizon
 // and no lane waits on another's painting. Lane l paints its own stripe
@@ -309,11 +323,7 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
         gz[l] -= std::int64_t(next[l] - k) * sz[l];
     }
 
-    const std::uint16_t* heights = t.terrain.heights().data();
-    const std::uint32_t* colors = t.colors.data();
-    // A height is read as the 32 bits ending with it (the upper half), so
-    // that the read stays within the array's allocation at its last sample.
-    const void* height_base = reinterpret_cast<const char*>(heights) - 2;
+    const std::uint64_t* records = t.records.data();
     const __m512i cols_v = _mm512_set1_epi32(t.terrain.cols());
     const __m512i one = _mm512_set1_epi32(1);
     const __m512i nrows_v = _mm512_set1_epi32(nrows);
@@ -408,17 +418,17 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             // without a test); the others read sample 0.
             alignas(64) int pv[kLanes];
             _mm512_store_si512(pv, _mm512_maskz_min_epu32(__mmask16(active), ahead.sample(cols_v), last_v));
-            for (int l = 0; l < kLanes; ++l) {
-                _mm_prefetch(reinterpret_cast<const char*>(heights + pv[l]), _MM_HINT_T0);
-                _mm_prefetch(reinterpret_cast<const char*>(colors + pv[l]), _MM_HINT_T0);
-            }
+            for (int l = 0; l < kLanes; ++l)
+                _mm_prefetch(reinterpret_cast<const char*>(records + pv[l]), _MM_HINT_T0);
         }
         if (const __mmask16 fresh = act & ~fetched) { // lanes that started a run at this slice
             const __m512i ci = at.sample(cols_v);
-            next_raw = _mm512_mask_i32gather_epi32(next_raw, fresh, ci, height_base, 2);
-            next_word = _mm512_mask_i32gather_epi32(next_word, fresh, ci, colors, 4);
+            __m512i w, r;
+            gather_records(fresh, ci, records, w, r);
+            next_raw = _mm512_mask_mov_epi32(next_raw, fresh, r);
+            next_word = _mm512_mask_mov_epi32(next_word, fresh, w);
         }
-        const __m512i raw = _mm512_srli_epi32(next_raw, 16);
+        const __m512i raw = next_raw;
         const __m512i word = next_word;
         const __m512 sigma = _mm512_add_ps(_mm512_mul_ps(_mm512_cvtepi32_ps(raw), _mm512_set1_ps(ma[k])),
                                            _mm512_set1_ps(mb[k]));
@@ -499,8 +509,7 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
         // The next slice's samples of the lanes casting now, asked for before
         // this slice's painting retires (clamped: a lane may end here).
         const __m512i ci = _mm512_min_epu32(at.sample(cols_v), last_v);
-        next_raw = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), __mmask16(active), ci, height_base, 2);
-        next_word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), __mmask16(active), ci, colors, 4);
+        gather_records(__mmask16(active), ci, records, next_word, next_raw);
         fetched = __mmask16(active);
     }
     // The stripes to the block's rows [0, jend) of each column, 16 x 16 tiles transposed.
@@ -525,14 +534,14 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
 
 // cast_columns_body's kernel for the evenly spaced slices of level 0: the
 // lanes for the shear camera's evenly spaced rows (where RowSearch's guess is
-// within a row) without a light mask, on a grid of fewer than 2^31 samples;
-// cast_blocks elsewhere.
+// within a row) without a light mask, on a grid of fewer than 2^31 samples
+// whose records are built; cast_blocks elsewhere.
 struct LaneColumns {
     template <std::ptrdiff_t kStride, bool kEvenRows>
     static long long cast(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
                           std::uint32_t* slice, int* jend, std::ptrdiff_t col_stride) {
         const double samples = double(t.terrain.cols()) * double(t.terrain.rows());
-        if (!kEvenRows || t.other_colors || col_stride != 1 || samples >= 0x1p31)
+        if (!kEvenRows || t.other_colors || col_stride != 1 || samples >= 0x1p31 || t.records.empty())
             return cast_blocks<kStride, kEvenRows>(t, f, c0, c1, color, slice, jend, col_stride);
         long long visited = 0;
         for (int g = c0; g < c1; g += kLanes)

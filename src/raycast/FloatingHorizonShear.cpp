@@ -118,6 +118,7 @@ void cast_shear(FloatingHorizonState& s, const Camera& camera, const Environment
     const auto t0 = Clock::now();
     CastFrame& f = s.frame;
     s.prepare_slices(camera, options, camera.near, camera.far, camera.focal_px());
+    if (cast_reads_records(options)) s.terrain.prepare_records();
     shear_column_planes(camera, f.columns.a);
     clip_columns(f.view, s.terrain.terrain, f.slices.d, f.columns);
     shear_rows(camera, f.rows);

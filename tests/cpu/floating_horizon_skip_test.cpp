@@ -10,6 +10,7 @@
 #include "core/DemoIsland.h"
 #include "io/LoadTerrain.h"
 #include "raycast/FloatingHorizon.h"
+#include "raycast/FloatingHorizonCast.h"
 #include "raycast/HeightPyramid.h"
 #include "raycast/SliceRunBound.h"
 
@@ -165,6 +166,31 @@ TEST(SliceRunBound, NotUsableWithoutACoarseEnoughLevel) {
     EXPECT_TRUE(SliceRunBound(pyramid, 4, std::llround(kOne), 0).usable());
     EXPECT_FALSE(SliceRunBound(pyramid, 32, std::llround(kOne), 0).usable());
     EXPECT_FALSE(SliceRunBound(pyramid, 0, std::llround(kOne), 0).usable());
+}
+
+// The x86-64-v4 cast gathers level 0 as {color, height} records: each
+// sample's packed color in the low half, its raw height in the high half, kept
+// up to date when the colors change.
+TEST(CastTerrain, RecordsHoldEachSamplesColorAndRawHeight) {
+    Terrain t(2, 3, 1.0f);
+    const std::uint16_t raw[6] = {0, 1, 300, 65535, 7, 40000};
+    for (int i = 0; i < 6; ++i) {
+        t.raw(i / 3, i % 3) = raw[i];
+        t.color(i / 3, i % 3) = Rgb8{std::uint8_t(i), std::uint8_t(10 * i), 200};
+    }
+    CastTerrain ct(t);
+    EXPECT_TRUE(ct.records.empty()); // built on demand only
+    ct.prepare_records();
+    ASSERT_EQ(ct.records.size(), 6u);
+    EXPECT_EQ(ct.records[0], 0x00000000'00C80000u);
+    EXPECT_EQ(ct.records[2], 0x0000012C'00C81402u);
+    EXPECT_EQ(ct.records[3], 0x0000FFFF'00C81E03u);
+    EXPECT_EQ(ct.records[5], 0x00009C40'00C83205u);
+    const std::vector<Rgb8> lit(6, Rgb8{9, 8, 7});
+    ct.set_colors(&lit);
+    ASSERT_EQ(ct.records.size(), 6u);
+    EXPECT_EQ(ct.records[2], 0x0000012C'00070809u);
+    EXPECT_EQ(ct.records[4], 0x00000007'00070809u);
 }
 
 TEST(FloatingHorizonRunSkipping, SameImageAsWithoutOnTheDemo) {
