@@ -272,8 +272,9 @@ inline float row_guess_margin(const float* rows, int nrows, float m0, float inv_
 // column casts (a run that its tests did not skip): the samples of the lanes
 // are gathered as {color, height} records (CastTerrain::records), and the
 // first row not below each sample found at once from RowSearch's guess
-// (row_guess_margin: the table is read only for a guess close to a row), so that a lane rises when that row lies above its horizon
-// and no lane waits on another's painting. Lane l paints its own stripe
+// (row_guess_margin: the table is read only for a guess close to a row), so
+// that a lane rises when that row lies above its horizon and no lane waits on
+// another's painting. Lane l paints its own stripe
 // (column-major: kLanePaintRows rows from the horizon up in one store, as the
 // scalar cast does row by row); the stripes are transposed into the block at
 // the end. The tests of run skipping are cast_run's, due at the same slices
