@@ -2,6 +2,8 @@
 // Plain image buffers shared by every renderer: row 0 is the top row of the
 // picture, as in the camera contract (DESIGN sec. 2) and in PNG files. (OpenGL
 // stores row 0 at the bottom; the GL layer flips when it uploads or reads back.)
+#include "core/HugePages.h"
+
 #include <cstdint>
 #include <vector>
 
@@ -19,11 +21,17 @@ struct Image2D {
     std::vector<T> pixels; // row-major, row 0 = top
 
     Image2D() = default;
-    Image2D(int w, int h, T fill = T{}) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h), fill) {}
+    Image2D(int w, int h, T fill = T{}) : width(w), height(h) {
+        assign_on_huge_pages(pixels, std::size_t(w) * std::size_t(h), fill);
+    }
 
     T& at(int col, int row) { return pixels[std::size_t(row) * std::size_t(width) + std::size_t(col)]; }
     const T& at(int col, int row) const { return pixels[std::size_t(row) * std::size_t(width) + std::size_t(col)]; }
-    void resize(int w, int h, T fill = T{}) { width = w; height = h; pixels.assign(std::size_t(w) * std::size_t(h), fill); }
+    void resize(int w, int h, T fill = T{}) {
+        width = w;
+        height = h;
+        assign_on_huge_pages(pixels, std::size_t(w) * std::size_t(h), fill);
+    }
 };
 
 using ColorImage = Image2D<Rgb8>;

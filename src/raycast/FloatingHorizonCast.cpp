@@ -3,6 +3,7 @@
 // FloatingHorizonCast.h.
 #include "raycast/FloatingHorizonCast.inl"
 
+#include "core/HugePages.h"
 #include "core/Parallel.h"
 #include "raycast/FloatingHorizon.h"
 
@@ -18,7 +19,7 @@ CastTerrain::CastTerrain(const Terrain& t)
 void CastTerrain::set_colors(const std::vector<Rgb8>* sample_colors, const LightMask& mask) {
     source_colors = sample_colors;
     const std::vector<Rgb8>& from = sample_colors ? *sample_colors : terrain.colors();
-    colors.resize(from.size());
+    if (colors.size() != from.size()) assign_on_huge_pages(colors, from.size());
     const std::uint8_t* shadowed = mask.shadowed ? mask.shadowed->data() : nullptr;
     other_colors = shadowed ? mask.other_colors->data() : nullptr;
     const std::size_t grain = std::size_t(1) << 16;
@@ -39,7 +40,7 @@ void CastTerrain::set_colors(const std::vector<Rgb8>* sample_colors, const Light
 
 void CastTerrain::prepare_records() {
     if (!records.empty()) return;
-    records.resize(colors.size());
+    assign_on_huge_pages(records, colors.size());
     const std::uint16_t* heights = terrain.heights().data();
     parallel::for_each_range(std::size_t(0), colors.size(), std::size_t(1) << 16,
                              [&](std::size_t begin, std::size_t end) {

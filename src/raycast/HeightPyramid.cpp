@@ -1,6 +1,7 @@
 // Based on: max-mipmaps for height-field ray casting. See HeightPyramid.h.
 #include "raycast/HeightPyramid.h"
 
+#include "core/HugePages.h"
 #include "core/Parallel.h"
 
 #include <algorithm>
@@ -15,8 +16,8 @@ HeightPyramid::HeightPyramid(const Terrain& terrain, int max_level, const std::u
         Level next;
         next.rows = (rows + 1) / 2;
         next.cols = (cols + 1) / 2;
-        next.heights.resize(std::size_t(next.rows) * std::size_t(next.cols));
-        if (with_colors) next.colors.resize(next.heights.size());
+        assign_on_huge_pages(next.heights, std::size_t(next.rows) * std::size_t(next.cols));
+        if (with_colors) assign_on_huge_pages(next.colors, next.heights.size());
         const Level* prev = levels_.empty() ? nullptr : &levels_.back();
         auto height = [&](int i, int j) -> std::uint16_t {
             return prev ? prev->heights[std::size_t(i) * std::size_t(cols) + std::size_t(j)] : terrain.raw(i, j);

@@ -1,0 +1,72 @@
+// assign_on_huge_pages: the contents of vector::assign, storage kept when it
+// suffices, and, where the kernel offers transparent huge pages on advice,
+// the storage backed by them.
+#include "core/HugePages.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace overflight {
+namespace {
+
+// The kernel's transparent huge page mode ("always", "madvise", "never"),
+// or "" where it has none.
+std::string thp_mode() {
+    std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string word;
+    while (in >> word)
+        if (word.size() > 2 && word.front() == '[') return word.substr(1, word.size() - 2);
+    return "";
+}
+
+// AnonHugePages of the mapping of this process that holds p, in KiB.
+long huge_kib_at(const void* p) {
+    std::ifstream in("/proc/self/smaps");
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    bool inside = false;
+    for (std::string line; std::getline(in, line);) {
+        std::uintptr_t lo = 0, hi = 0;
+        char dash = 0;
+        std::istringstream range(line);
+        if (range >> std::hex >> lo >> dash >> hi && dash == '-') {
+            inside = lo <= at && at < hi;
+            continue;
+        }
+        long kib = 0;
+        if (inside && std::sscanf(line.c_str(), "AnonHugePages: %ld kB", &kib) == 1) return kib;
+    }
+    return 0;
+}
+
+TEST(HugePages, AssignFillsAndKeepsStorageThatSuffices) {
+    std::vector<std::uint32_t> v;
+    assign_on_huge_pages(v, 5, 7u);
+    EXPECT_EQ(v, (std::vector<std::uint32_t>{7, 7, 7, 7, 7}));
+    const std::uint32_t* before = v.data();
+    assign_on_huge_pages(v, 3, 9u);
+    EXPECT_EQ(v, (std::vector<std::uint32_t>{9, 9, 9}));
+    EXPECT_EQ(v.data(), before);
+    assign_on_huge_pages(v, 1000, 2u);
+    ASSERT_EQ(v.size(), 1000u);
+    for (const std::uint32_t x : v) ASSERT_EQ(x, 2u);
+}
+
+TEST(HugePages, LargeStorageIsBackedByHugePagesWhereTheKernelOffersThem) {
+    std::vector<std::uint64_t> v;
+    assign_on_huge_pages(v, std::size_t(32) << 17, std::uint64_t(1)); // 32 MiB
+    const std::string mode = thp_mode();
+    if (mode != "always" && mode != "madvise") {
+        std::printf("transparent huge pages: \"%s\" here, so 4 KiB pages serve\n", mode.c_str());
+        return;
+    }
+    // All but the partial 2 MiB pages at either end can be huge.
+    EXPECT_GE(huge_kib_at(v.data() + v.size() / 2), 16 * 1024) << "mode " << mode;
+}
+
+} // namespace
+} // namespace overflight
