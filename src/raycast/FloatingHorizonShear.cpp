@@ -53,9 +53,10 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
     ShearResolveTables tables{f.rows.m.data(), s.slice_depth.data(), f.slices.df.data(), &s.fog, s.fog_color,
                               s.sky.entries()};
     tables.slices = int(f.slices.df.size());
-    if (f.slices.uniform) {
+    if (f.slices.even > 0) {
         tables.d_first = f.slices.df[0];
         tables.d_step = float(f.slices.step);
+        tables.even = f.slices.even;
     }
     if (s.air_on) {
         tables.air = &s.air;

@@ -37,7 +37,6 @@ void place_slices(const SlicePlacement& p, Slices& out) {
     out.d.clear();
     out.level.clear();
     out.uniform = !p.lod && !(p.near_step_pixels > 0.0);
-    out.step = out.uniform ? hs : 0.0;
     if (out.uniform) {
         const long long count = (long long)std::floor((p.d_last - p.d_first) / hs + 1e-9) + 1;
         out.d.resize(std::size_t(std::max(count, 1LL)));
@@ -61,12 +60,13 @@ void place_slices(const SlicePlacement& p, Slices& out) {
             } else d += step;
         }
     }
+    out.step = out.even > 0 ? hs : 0.0;
     const std::size_t n = out.d.size();
     out.df.resize(n);
     // Evenly spaced: in float as d_first + step k, which the shear resolve may
     // compute rather than read (ShearResolveTables::d_step).
     for (std::size_t k = 0; k < n; ++k)
-        out.df[k] = out.uniform ? float(p.d_first) + float(hs) * float(k) : float(out.d[k]);
+        out.df[k] = int(k) < out.even ? float(p.d_first) + float(hs) * float(k) : float(out.d[k]);
 }
 
 void slice_slopes(const std::vector<double>& d, const Terrain& terrain, float max_height, double eye_y,

@@ -46,12 +46,14 @@ struct Slices {
     std::vector<double> d;           // view depth along F of slice k
     std::vector<float> df;           // the same in float (fog distance)
     std::vector<std::uint8_t> level; // pyramid level sampled at slice k (0: the terrain)
-    bool uniform = true;             // one cell apart: d[k] = d[0] + step k, df[k] = float(d[0]) + float(step) float(k)
-    double step = 0;                 // uniform: h_scale
-    // The first `even` slices are one cell apart, at d[0] + h_scale k as when
-    // uniform (all of them when uniform; the LOD's level-0 part, without near
-    // refinement), so that the cast treats them as the papers' slices.
+    bool uniform = true;             // all one cell apart (even == d.size())
+    // The first `even` slices are one cell apart, at d[k] = d[0] + step k and
+    // df[k] = float(d[0]) + float(step) float(k), as when uniform (all of them
+    // when uniform; the LOD's level-0 part, without near refinement), so that
+    // the cast treats them as the papers' slices and the shear resolve may
+    // compute their view depth rather than read it.
     int even = 0;
+    double step = 0; // h_scale (0 when even is 0)
 };
 
 // Slices one cell apart (sec. 5.2: one step of h_scale along F is the

@@ -146,9 +146,9 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
 }
 
 // Rows [j0, j1) of a block that are all terrain (kTerrain, !kSky), partly
-// terrain (both) or all sky (!kTerrain); kEven: the slices are evenly spaced
-// (ShearResolveTables::d_step), for the kernels that compute the view depth
-// rather than look it up.
+// terrain (both) or all sky (!kTerrain); kEven: the first slices are evenly
+// spaced (ShearResolveTables::d_step), for the kernels that compute their
+// view depth rather than look it up (and look it up beyond them).
 template <bool kTerrain_, bool kSky_, bool kEven_>
 struct Band {
     static constexpr bool kTerrain = kTerrain_, kSky = kSky_, kEven = kEven_;
@@ -320,9 +320,9 @@ struct AirLanes {
 // not emit gathers for generic x86-64 tuning; Lanes::Lookup, LaneLookup.h):
 // the same operations in the same order, so the same bits; the pixels of
 // each 8 lanes come from `lanes` (FogLanes or AirLanes).
-// kEven: the slices are evenly spaced (ShearResolveTables::d_step), so the
-// view depth is computed rather than gathered. A full block's pixels go to
-// the images straight from the registers.
+// kEven: the first slices are evenly spaced (ShearResolveTables::d_step), so
+// their view depth is computed rather than gathered. A full block's pixels go
+// to the images straight from the registers.
 template <bool kTerrain, bool kSky, bool kEven, class Lanes>
 __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const Lanes& lanes,
                                                        const ShearBlock& blk, int H, int j0, int j1,
@@ -330,6 +330,7 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
                                                        Rgb8* out_c, float* out_d, std::size_t W) {
     const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
+    const __m256i last_even = _mm256_set1_epi32(t.even - 1);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
         const float mj = t.row_m[j];
@@ -352,8 +353,15 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
                 z = Lanes::Lookup::floats(t.slice_depth, t.slices, k);
-                d = kEven ? _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)))
-                          : Lanes::Lookup::floats(t.slice_d, t.slices, k);
+                if constexpr (kEven) {
+                    d = _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)));
+                    const __m256i beyond = _mm256_cmpgt_epi32(k, last_even);
+                    if (!_mm256_testz_si256(beyond, beyond)) [[unlikely]]
+                        d = _mm256_blendv_ps(d, Lanes::Lookup::floats(t.slice_d, t.slices, k),
+                                             _mm256_castsi256_ps(beyond));
+                } else {
+                    d = Lanes::Lookup::floats(t.slice_d, t.slices, k);
+                }
                 c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
             }
             store_lanes(lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c),
@@ -521,6 +529,7 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
                                                    Rgb8* out_c, float* out_d, std::size_t W) {
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 d_first = _mm512_set1_ps(t.d_first), d_step = _mm512_set1_ps(t.d_step);
+    const __m512i even = _mm512_set1_epi32(t.even);
     // 16 packed colors to 48 bytes of Rgb8: 12 bytes per 128-bit lane, then the lanes joined.
     const __m512i rgb_bytes =
         _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
@@ -545,8 +554,13 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m512i k = _mm512_maskz_loadu_epi32(terrain, ss + i);
                 const __m512 z = _mm512_castsi512_ps(lookup_near(t.slice_depth, t.slices, k));
-                d = kEven ? _mm512_add_ps(d_first, _mm512_mul_ps(d_step, _mm512_cvtepi32_ps(k)))
-                          : _mm512_castsi512_ps(lookup_near(t.slice_d, t.slices, k));
+                if constexpr (kEven) {
+                    d = _mm512_add_ps(d_first, _mm512_mul_ps(d_step, _mm512_cvtepi32_ps(k)));
+                    if (const __mmask16 beyond = _mm512_cmpge_epi32_mask(k, even)) [[unlikely]]
+                        d = _mm512_mask_mov_ps(d, beyond, _mm512_castsi512_ps(lookup_near(t.slice_d, t.slices, k)));
+                } else {
+                    d = _mm512_castsi512_ps(lookup_near(t.slice_d, t.slices, k));
+                }
                 c = _mm512_loadu_si512(sc + i);
                 depth = kSky ? _mm512_mask_blend_ps(terrain, one, z) : z;
             }
@@ -606,6 +620,7 @@ void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, in
                           std::size_t W) {
     const v128_t one = wasm_f32x4_splat(1.0f), half = wasm_f32x4_splat(0.5f);
     const v128_t d_first = wasm_f32x4_splat(t.d_first), d_step = wasm_f32x4_splat(t.d_step);
+    const v128_t even = wasm_i32x4_splat(t.even);
     const v128_t fog_step = wasm_f32x4_splat(t.fog->inv_step());
     const v128_t fog_last = wasm_i32x4_splat(FogTable::kEntries);
     const v128_t sky_scale = wasm_f32x4_splat(float(SkyTable::kEntries - 1));
@@ -633,8 +648,14 @@ void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, in
                 // Sky lanes read slice 0 (their entries are stale).
                 const v128_t k = wasm_v128_and(wasm_v128_load(ss + i), terrain);
                 z = lookup4(t.slice_depth, k);
-                const v128_t d = kEven ? wasm_f32x4_add(d_first, wasm_f32x4_mul(d_step, wasm_f32x4_convert_i32x4(k)))
-                                       : lookup4(t.slice_d, k);
+                v128_t d;
+                if constexpr (kEven) {
+                    d = wasm_f32x4_add(d_first, wasm_f32x4_mul(d_step, wasm_f32x4_convert_i32x4(k)));
+                    const v128_t beyond = wasm_i32x4_ge(k, even);
+                    if (wasm_v128_any_true(beyond)) d = wasm_v128_bitselect(lookup4(t.slice_d, k), d, beyond);
+                } else {
+                    d = lookup4(t.slice_d, k);
+                }
                 const v128_t x = wasm_f32x4_add(wasm_f32x4_mul(wasm_f32x4_mul(d, len), fog_step), half);
                 const v128_t a = lookup4(t.fog->entries(), wasm_i32x4_min(wasm_i32x4_trunc_sat_f32x4(x), fog_last));
                 const v128_t b = wasm_i32x4_sub(w_full, a);

@@ -35,10 +35,11 @@ struct ShearResolveTables {
     // fog and sky gradient; sun_y is the sun direction's Y.
     const AerialTables* air = nullptr;
     float sun_y = 0.0f;
-    // Evenly spaced slices (d_step > 0): slice_d[k] is d_first + d_step * k,
-    // computed in float in that order, so a kernel may compute it rather than
-    // read it. 0: read slice_d.
+    // The first `even` slices evenly spaced (d_step > 0): slice_d[k] is
+    // d_first + d_step * k for k < even, computed in float in that order, so
+    // a kernel may compute it rather than read it. 0: read slice_d.
     float d_first = 0.0f, d_step = 0.0f;
+    int even = 0;
     // The entries of slice_depth and slice_d (0: unknown, so that a kernel
     // reads them one lane at a time).
     int slices = 0;

@@ -193,34 +193,41 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const int H = 301, S = 500, W = 70;
-    std::vector<float> rows(H), depth(S), d(S);
+    std::vector<float> rows(H), depth(S), d(S), d_lod(S);
     for (int j = 0; j < H; ++j) rows[std::size_t(j)] = -1.2f + 2.4f * float(j) / float(H);
     for (int k = 0; k < S; ++k) {
         d[std::size_t(k)] = 1.0f + 3.0f * float(k);
         depth[std::size_t(k)] = 1.0f - 1.0f / d[std::size_t(k)];
+        // As the distance LOD places them: evenly spaced up to slice 200, twice as far apart beyond.
+        d_lod[std::size_t(k)] = k < 200 ? d[std::size_t(k)] : 602.5f + 6.0f * float(k - 200);
     }
     Environment env;
     FogTable fog;
     fog.build(0.002f, d.back() * 2.0f);
     SkyTable sky;
     sky.build(env);
-    // The view depths read from the table, and computed (d[k] = 1 + 3 k in float).
+    // The view depths read from the table, computed (d[k] = 1 + 3 k in float),
+    // and computed for the first 200 slices only.
     ShearResolveTables read{rows.data(), depth.data(), d.data(), &fog, 0x9AB0C8u, sky.entries()};
     read.slices = S;
     ShearResolveTables even = read;
     even.d_first = 1.0f;
     even.d_step = 3.0f;
+    even.even = S;
+    ShearResolveTables part = even;
+    part.slice_d = d_lod.data();
+    part.even = 200;
     // And with the aerial perspective instead of fog and sky gradient.
     env.atmosphere = true;
     env.sun_dir = {0.3f, 0.2f, -0.9f};
     AerialTables air;
     air.build(aerial_frame(env, 50.0), -300.0f, 400.0f);
-    ShearResolveTables read_air = read, even_air = even;
-    for (ShearResolveTables* t : {&read_air, &even_air}) {
+    ShearResolveTables read_air = read, even_air = even, part_air = part;
+    for (ShearResolveTables* t : {&read_air, &even_air, &part_air}) {
         t->air = &air;
         t->sun_y = 0.2f;
     }
-    for (const ShearResolveTables& t : {read, even, read_air, even_air}) {
+    for (const ShearResolveTables& t : {read, even, part, read_air, even_air, part_air}) {
         for (int n : {kShearBlock, 7}) {
             std::vector<int> jend(kShearBlock, 0);
             std::vector<float> len2(kShearBlock, 1.0f);
@@ -277,11 +284,12 @@ TEST(ShearResolve, KernelsAgreeBitForBit) {
 TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     if (!resolve_kernel_available(ResolveKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
     const int H = 400, S = 3000, W = kShearBlock;
-    std::vector<float> rows(H), depth(S), d(S);
+    std::vector<float> rows(H), depth(S), d(S), d_lod(S);
     for (int j = 0; j < H; ++j) rows[std::size_t(j)] = -0.6f + 40.0f * float(j * j) / float(H * H);
     for (int k = 0; k < S; ++k) {
         d[std::size_t(k)] = 1.0f + 8.0f * float(k);
         depth[std::size_t(k)] = 1.0f - 1.0f / d[std::size_t(k)];
+        d_lod[std::size_t(k)] = k < 1000 ? d[std::size_t(k)] : 8005.0f + 16.0f * float(k - 1000);
     }
     Environment env;
     env.atmosphere = true;
@@ -297,6 +305,10 @@ TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     ShearResolveTables even = fogged;
     even.d_first = 1.0f;
     even.d_step = 8.0f;
+    even.even = S;
+    ShearResolveTables part = even; // evenly spaced up to slice 1000 (the distance LOD)
+    part.slice_d = d_lod.data();
+    part.even = 1000;
     ShearResolveTables t = fogged;
     t.air = &air;
     t.sun_y = 0.1f;
@@ -320,7 +332,7 @@ TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
     c2.resize(W, H);
     z1.resize(W, H);
     z2.resize(W, H);
-    for (const ShearResolveTables* tables : {&fogged, &even, &t}) {
+    for (const ShearResolveTables* tables : {&fogged, &even, &part, &t}) {
         resolve_shear_block(*tables, blk, H, s.color.data(), s.slice.data(), c1.pixels.data(), z1.pixels.data(),
                             std::size_t(W), ResolveKernel::Portable);
         for (ResolveKernel kernel : fast_kernels()) {
