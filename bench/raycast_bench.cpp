@@ -109,12 +109,14 @@ void run_fast(benchmark::State& state, Projection proj, RaycastOptions opt, bool
     DepthImage depth;
     RaycastStats stats;
     fh.render(cam, env, opt, color, depth, &stats); // warm-up
-    double ms_cast = 0, ms_resolve = 0;
+    double ms_setup = 0, ms_cast = 0, ms_resolve = 0;
     for (auto _ : state) {
         fh.render(cam, env, opt, color, depth, &stats);
+        ms_setup += stats.ms_setup;
         ms_cast += stats.ms_cast;
         ms_resolve += stats.ms_resolve;
     }
+    state.counters["setup_ms"] = ms_setup / double(state.iterations());
     state.counters["cast_ms"] = ms_cast / double(state.iterations());
     state.counters["resolve_ms"] = ms_resolve / double(state.iterations());
     state.counters["ns_per_sample"] = benchmark::Counter(double(stats.samples) * 1e-9 * double(state.iterations()),
