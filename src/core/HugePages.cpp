@@ -1,6 +1,7 @@
 #include "core/HugePages.h"
 
 #include <cstdint>
+#include <cstdlib>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -8,14 +9,27 @@
 
 namespace overflight {
 
+namespace {
+constexpr std::size_t kHuge = std::size_t(2) << 20;
+}
+
 void advise_huge_pages([[maybe_unused]] void* p, [[maybe_unused]] std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-    constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
-    const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
-    const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(kHuge - 1);
+    const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(p) + kHuge - 1) & ~std::uintptr_t(kHuge - 1);
+    const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~std::uintptr_t(kHuge - 1);
     // Advice only: where the kernel declines (THP off), 4 KiB pages serve as before.
     if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 #endif
 }
+
+void* allocate_huge_pages(std::size_t bytes) {
+    const std::size_t whole = (bytes + kHuge - 1) / kHuge * kHuge;
+    void* p = whole ? std::aligned_alloc(kHuge, whole) : nullptr;
+    if (!p && whole) throw std::bad_alloc();
+    advise_huge_pages(p, whole);
+    return p;
+}
+
+void free_huge_pages(void* p) noexcept { std::free(p); }
 
 } // namespace overflight

@@ -15,6 +15,8 @@
 #if OVERFLIGHT_CAST_X86_64_V4
 #include "raycast/FloatingHorizonCast.inl"
 
+#include "core/HugePages.h"
+
 #include <immintrin.h>
 
 #include <bit>
@@ -96,12 +98,13 @@ public:
     Stripes() = default;
     Stripes(const Stripes&) = delete;
     Stripes& operator=(const Stripes&) = delete;
-    ~Stripes() { delete[] data_; }
+    ~Stripes() { free_huge_pages(data_); }
+    // On huge pages (HugePages.h): a step paints 32 stripes.
     std::uint32_t* get(std::size_t n) {
         if (n > size_) {
-            delete[] data_;
+            free_huge_pages(data_);
             data_ = nullptr;
-            data_ = new std::uint32_t[n];
+            data_ = static_cast<std::uint32_t*>(allocate_huge_pages(n * sizeof(std::uint32_t)));
             size_ = n;
         }
         return data_;

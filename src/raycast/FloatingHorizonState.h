@@ -5,6 +5,7 @@
 // and the three casts that fill them, one per camera model.
 #include "core/Camera.h"
 #include "core/DataSet.h"
+#include "core/HugePages.h"
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "raycast/Atmosphere.h"
@@ -54,9 +55,10 @@ struct FloatingHorizonState {
         return air_on ? air.sky(sine, cos_sun) : sky.color(sine);
     }
 
-    // Shear: one block's cast, row-major within the block, per thread.
+    // Shear: one block's cast, row-major within the block, per thread, on
+    // huge pages (HugePages.h: a block's rows span a page or more each 32).
     struct BlockScratch {
-        std::vector<std::uint32_t> color, slice;
+        std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> color, slice;
         std::vector<int> jend;
     };
     parallel::ThreadLocal<BlockScratch> block_scratch;

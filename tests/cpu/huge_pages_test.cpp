@@ -1,6 +1,6 @@
 // assign_on_huge_pages: the contents of vector::assign, storage kept when it
-// suffices, and, where the kernel offers transparent huge pages on advice,
-// the storage backed by them.
+// suffices; HugePageAllocator: whole aligned huge pages; and, where the
+// kernel offers transparent huge pages on advice, both backed by them.
 #include "core/HugePages.h"
 
 #include <gtest/gtest.h>
@@ -66,6 +66,22 @@ TEST(HugePages, LargeStorageIsBackedByHugePagesWhereTheKernelOffersThem) {
     }
     // All but the partial 2 MiB pages at either end can be huge.
     EXPECT_GE(huge_kib_at(v.data() + v.size() / 2), 16 * 1024) << "mode " << mode;
+}
+
+TEST(HugePages, AllocatorGivesWholeAlignedHugePages) {
+    std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> v(1000, 5u); // 4 KB: one 2 MiB page
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % (std::uintptr_t(2) << 20), 0u);
+    for (const std::uint32_t x : v) ASSERT_EQ(x, 5u);
+    v.resize(std::size_t(3) << 20, 6u); // 12 MiB: reallocated, the contents kept
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % (std::uintptr_t(2) << 20), 0u);
+    EXPECT_EQ(v[999], 5u);
+    EXPECT_EQ(v.back(), 6u);
+    const std::string mode = thp_mode();
+    if (mode != "always" && mode != "madvise") {
+        std::printf("transparent huge pages: \"%s\" here, so 4 KiB pages serve\n", mode.c_str());
+        return;
+    }
+    EXPECT_GE(huge_kib_at(v.data()), 12 * 1024) << "mode " << mode;
 }
 
 } // namespace
