@@ -1,6 +1,7 @@
 #include "core/Terrain.h"
 
 #include "core/Error.h"
+#include "core/HugePages.h"
 
 #include <glm/geometric.hpp>
 
@@ -20,8 +21,9 @@ Terrain::Terrain(int rows, int cols, float h_scale, float v_scale, float y_offse
         throw Error("terrain", problem);
     if (!std::isfinite(v_scale) || !std::isfinite(y_offset))
         throw Error("terrain", "vertical scale and offset must be finite numbers");
-    heights_.assign(std::size_t(rows) * std::size_t(cols), 0);
-    colors_.assign(heights_.size(), Rgb8{128, 128, 128});
+    // The casts sample the grid in every frame (HugePages.h).
+    assign_on_huge_pages(heights_, std::size_t(rows) * std::size_t(cols), std::uint16_t(0));
+    assign_on_huge_pages(colors_, heights_.size(), Rgb8{128, 128, 128});
 }
 
 namespace {
