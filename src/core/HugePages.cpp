@@ -11,7 +11,12 @@ namespace overflight {
 
 namespace {
 constexpr std::size_t kHuge = std::size_t(2) << 20;
-}
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+constexpr bool kAdvice = true;
+#else
+constexpr bool kAdvice = false; // nothing to align for: cache lines only
+#endif
+} // namespace
 
 void advise_huge_pages([[maybe_unused]] void* p, [[maybe_unused]] std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
@@ -23,8 +28,9 @@ void advise_huge_pages([[maybe_unused]] void* p, [[maybe_unused]] std::size_t by
 }
 
 void* allocate_huge_pages(std::size_t bytes) {
-    const std::size_t whole = (bytes + kHuge - 1) / kHuge * kHuge;
-    void* p = whole ? std::aligned_alloc(kHuge, whole) : nullptr;
+    const std::size_t align = kAdvice ? kHuge : 64;
+    const std::size_t whole = (bytes + align - 1) / align * align;
+    void* p = whole ? std::aligned_alloc(align, whole) : nullptr;
     if (!p && whole) throw std::bad_alloc();
     advise_huge_pages(p, whole);
     return p;

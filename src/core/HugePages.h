@@ -40,8 +40,8 @@ void assign_on_huge_pages(std::vector<T>& v, std::size_t n, const T& fill = T{})
 }
 
 // For scratch smaller than a huge page: bytes rounded up to whole 2 MiB
-// pages, 2 MiB-aligned, advised (throws std::bad_alloc); free with
-// free_huge_pages.
+// pages, 2 MiB-aligned, advised (where there is no such advice: to whole
+// 64-byte lines); throws std::bad_alloc; free with free_huge_pages.
 void* allocate_huge_pages(std::size_t bytes);
 void free_huge_pages(void* p) noexcept;
 

@@ -56,7 +56,7 @@ struct FloatingHorizonState {
     }
 
     // Shear: one block's cast, row-major within the block, per thread, on
-    // huge pages (HugePages.h: a block's rows span a page or more each 32).
+    // huge pages (HugePages.h: at 4K each array spans 68 pages of 4 KiB).
     struct BlockScratch {
         std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> color, slice;
         std::vector<int> jend;
