@@ -81,7 +81,9 @@ TEST(HugePages, AllocatorGivesWholeAlignedHugePages) {
         std::printf("transparent huge pages: \"%s\" here, so 4 KiB pages serve\n", mode.c_str());
         return;
     }
-    EXPECT_GE(huge_kib_at(v.data()), 12 * 1024) << "mode " << mode;
+    // All but one of its 6 pages (a sanitizer's allocator writes its own
+    // header into the first before the advice).
+    EXPECT_GE(huge_kib_at(v.data()), 10 * 1024) << "mode " << mode;
 }
 
 } // namespace
