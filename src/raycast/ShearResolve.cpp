@@ -51,8 +51,14 @@ constexpr int kWritePrefetchRows = 8;
 }
 
 // The image row of block row j (bottom-up), prefetching the one kWritePrefetchRows above.
-std::size_t image_row(const ShearBlock& blk, int H, int j, std::size_t W, const Rgb8* out_c, const float* out_d) {
-    if (j + kWritePrefetchRows < H) prefetch_run(out_c, out_d, std::size_t(H - 1 - j - kWritePrefetchRows) * W, blk.n);
+// A full block's run has a constant length, so that its prefetches unroll.
+[[gnu::always_inline]] inline std::size_t image_row(const ShearBlock& blk, int H, int j, std::size_t W,
+                                                    const Rgb8* out_c, const float* out_d) {
+    if (j + kWritePrefetchRows < H) {
+        const std::size_t ahead = std::size_t(H - 1 - j - kWritePrefetchRows) * W;
+        if (blk.n == kShearBlock) prefetch_run(out_c, out_d, ahead, kShearBlock);
+        else prefetch_run(out_c, out_d, ahead, blk.n);
+    }
     return std::size_t(H - 1 - j) * W;
 }
 
@@ -199,14 +205,38 @@ __attribute__((target("avx2"))) inline void store_lanes(__m256i pixel, __m256 de
     _mm256_storeu_ps(row_d + i, depth);
 }
 
+// What the vector kernels read of the tables for GL_EXP fog and the sky
+// gradient (FogParams) and for the aerial perspective (AirParams), held by
+// value: a kernel works on its own copy, which no store to the images can
+// change, so the compiler keeps it in registers (through a reference into the
+// tables it loaded and broadcast them again for every 8 or 16 pixels).
+struct FogParams {
+    const std::uint32_t* fog;
+    float fog_step;
+    std::uint32_t fog_color;
+    const std::uint32_t* sky_table;
+
+    explicit FogParams(const ShearResolveTables& t)
+        : fog(t.fog->entries()), fog_step(t.fog->inv_step()), fog_color(t.fog_color), sky_table(t.sky) {}
+};
+struct AirParams {
+    const std::uint32_t *haze, *transmit, *opacity;
+    const float* column_table;
+    float dy_lo, inv_dy_step, sun_y;
+
+    explicit AirParams(const ShearResolveTables& t)
+        : haze(t.air->haze()), transmit(t.air->transmit()), opacity(t.air->opacity()), column_table(t.air->column()),
+          dy_lo(t.air->dy_lo()), inv_dy_step(t.air->inv_dy_step()), sun_y(t.sun_y) {}
+};
+
 // The pixels of 8 lanes, GL_EXP fog and sky gradient: resolve_rows_portable's
 // operations lane by lane, the tables read through L (LaneLookup.h). m: the
 // row's slope; len, d: each lane's ray length per unit of view depth and view
 // depth; c: the surface colors.
 template <class L>
-struct FogLanes {
+struct FogLanes : FogParams {
     using Lookup = L;
-    const ShearResolveTables& t;
+    using FogParams::FogParams;
 
     template <bool kTerrain, bool kSky>
     __attribute__((target("avx2"))) __m256i shade(const ShearBlock&, int, __m256 m, __m256 len, __m256 d, __m256i terrain,
@@ -214,19 +244,19 @@ struct FogLanes {
         const __m256 half = _mm256_set1_ps(0.5f);
         __m256i fogged = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
         if constexpr (kTerrain) {
-            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_set1_ps(t.fog->inv_step())), half);
-            const __m256i a = L::words(t.fog->entries(), FogTable::kEntries + 1,
+            const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), _mm256_set1_ps(fog_step)), half);
+            const __m256i a = L::words(fog, FogTable::kEntries + 1,
                                        _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(FogTable::kEntries)));
             const __m256i b = _mm256_sub_epi32(_mm256_set1_epi32(256), a);
             const __m256i mask_rb = _mm256_set1_epi32(0xFF00FF), mask_g = _mm256_set1_epi32(0x00FF00);
             // fog_blend, lane by lane.
             const __m256i rb = _mm256_add_epi32(
                 _mm256_mullo_epi32(_mm256_and_si256(c, mask_rb), a),
-                _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int(t.fog_color & 0xFF00FFu)), b),
+                _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int(fog_color & 0xFF00FFu)), b),
                                  _mm256_set1_epi32(0x800080)));
             const __m256i g = _mm256_add_epi32(
                 _mm256_mullo_epi32(_mm256_and_si256(c, mask_g), a),
-                _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int(t.fog_color & 0x00FF00u)), b),
+                _mm256_add_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int(fog_color & 0x00FF00u)), b),
                                  _mm256_set1_epi32(0x008000)));
             fogged = _mm256_or_si256(_mm256_and_si256(_mm256_srli_epi32(rb, 8), mask_rb),
                                      _mm256_and_si256(_mm256_srli_epi32(g, 8), mask_g));
@@ -236,7 +266,7 @@ struct FogLanes {
                 _mm256_mul_ps(_mm256_div_ps(m, len), _mm256_set1_ps(float(SkyTable::kEntries - 1))), half);
             const __m256i e = _mm256_max_epi32(
                 _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(SkyTable::kEntries - 1)), _mm256_setzero_si256());
-            sky = L::words(t.sky, SkyTable::kEntries, e);
+            sky = L::words(sky_table, SkyTable::kEntries, e);
         }
         return _mm256_blendv_epi8(sky, fogged, terrain);
     }
@@ -276,32 +306,31 @@ __attribute__((target("avx2"))) inline __m256i air_blend(__m256i surface, __m256
 // The pixels of 8 lanes through the air (t.air): AerialTables' lookups and
 // blends lane by lane, as FogLanes.
 template <class L>
-struct AirLanes {
+struct AirLanes : AirParams {
     using Lookup = L;
-    const ShearResolveTables& t;
+    using AirParams::AirParams;
 
     template <bool kTerrain, bool kSky>
     __attribute__((target("avx2"))) __m256i shade(const ShearBlock& blk, int i, __m256 m, __m256 len, __m256 d,
                                                   __m256i terrain, __m256i c) const {
-        const AerialTables& air = *t.air;
         const __m256 half = _mm256_set1_ps(0.5f);
         const __m256 cos_sun = _mm256_div_ps(
-            _mm256_add_ps(_mm256_loadu_ps(blk.sun_dot + i), _mm256_mul_ps(m, _mm256_set1_ps(t.sun_y))), len);
+            _mm256_add_ps(_mm256_loadu_ps(blk.sun_dot + i), _mm256_mul_ps(m, _mm256_set1_ps(sun_y))), len);
         const __m256i p = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(cos_sun, _mm256_set1_ps(1.0f)),
                                                             _mm256_set1_ps(AerialTables::kPhaseScale)),
                                               half),
                                 float(AerialTables::kPhases - 1));
-        const __m256i h = L::words(air.haze(), AerialTables::kPhases, p);
+        const __m256i h = L::words(haze, AerialTables::kPhases, p);
         __m256i lit = _mm256_setzero_si256(), sky = _mm256_setzero_si256();
         if constexpr (kTerrain) {
             const __m256 dy = _mm256_mul_ps(d, m);
-            const __m256i hj = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, _mm256_set1_ps(air.dy_lo())),
-                                                                 _mm256_set1_ps(air.inv_dy_step())),
+            const __m256i hj = clamp_lanes(_mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(dy, _mm256_set1_ps(dy_lo)),
+                                                                 _mm256_set1_ps(inv_dy_step)),
                                                    half),
                                      float(AerialTables::kHeights - 1));
-            const __m256 per_unit = L::floats(air.column(), AerialTables::kHeights, hj);
+            const __m256 per_unit = L::floats(column_table, AerialTables::kHeights, hj);
             const __m256 x = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(d, len), per_unit), half);
-            const __m256i w = L::words(air.transmit(), AerialTables::kColumns + 1, _mm256_cvttps_epi32(_mm256_min_ps(
+            const __m256i w = L::words(transmit, AerialTables::kColumns + 1, _mm256_cvttps_epi32(_mm256_min_ps(
                                                            x, _mm256_set1_ps(float(AerialTables::kColumns)))));
             lit = air_blend(c, w, h);
         }
@@ -310,7 +339,7 @@ struct AirLanes {
                                                                 _mm256_set1_ps(float(AerialTables::kSkies - 1))),
                                                   half),
                                     float(AerialTables::kSkies - 1));
-            sky = air_blend(_mm256_setzero_si256(), L::words(air.opacity(), AerialTables::kSkies, q), h, false);
+            sky = air_blend(_mm256_setzero_si256(), L::words(opacity, AerialTables::kSkies, q), h, false);
         }
         return _mm256_blendv_epi8(sky, lit, terrain);
     }
@@ -323,17 +352,23 @@ struct AirLanes {
 // kEven: the first slices are evenly spaced (ShearResolveTables::d_step), so
 // their view depth is computed rather than gathered. A full block's pixels go
 // to the images straight from the registers.
+// The tables and the lanes are read into locals first (FogParams).
 template <bool kTerrain, bool kSky, bool kEven, class Lanes>
-__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const Lanes& lanes,
+__attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const Lanes& lanes_in,
                                                        const ShearBlock& blk, int H, int j0, int j1,
                                                        const std::uint32_t* color, const std::uint32_t* slice,
                                                        Rgb8* out_c, float* out_d, std::size_t W) {
+    const Lanes lanes = lanes_in;
+    const float* const row_m = t.row_m;
+    const float* const slice_depth = t.slice_depth;
+    const float* const slice_d = t.slice_d;
+    const int slices = t.slices;
     const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
     const __m256i last_even = _mm256_set1_epi32(t.even - 1);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
-        const float mj = t.row_m[j];
+        const float mj = row_m[j];
         const __m256 m = _mm256_set1_ps(mj), m2 = _mm256_set1_ps(mj * mj);
         const __m256i jv = _mm256_set1_epi32(j);
         const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
@@ -352,15 +387,15 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
-                z = Lanes::Lookup::floats(t.slice_depth, t.slices, k);
+                z = Lanes::Lookup::floats(slice_depth, slices, k);
                 if constexpr (kEven) {
                     d = _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)));
                     const __m256i beyond = _mm256_cmpgt_epi32(k, last_even);
                     if (!_mm256_testz_si256(beyond, beyond)) [[unlikely]]
-                        d = _mm256_blendv_ps(d, Lanes::Lookup::floats(t.slice_d, t.slices, k),
+                        d = _mm256_blendv_ps(d, Lanes::Lookup::floats(slice_d, slices, k),
                                              _mm256_castsi256_ps(beyond));
                 } else {
-                    d = Lanes::Lookup::floats(t.slice_d, t.slices, k);
+                    d = Lanes::Lookup::floats(slice_d, slices, k);
                 }
                 c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
             }
@@ -386,7 +421,10 @@ template <class T>
 OVERFLIGHT_RESOLVE_AVX512 inline __m512i lookup_near(const T* table, int entries, __m512i idx) {
     static_assert(sizeof(T) == 4);
     if (entries >= 32) {
-        const int first = std::clamp(_mm_cvtsi128_si32(_mm512_castsi512_si128(idx)) - 8, 0, entries - 32);
+        // Lane 0's entry at least 8 from the start and 24 from the end: no clamp.
+        int first = _mm_cvtsi128_si32(_mm512_castsi512_si128(idx)) - 8;
+        if (unsigned(first) > unsigned(entries - 32)) [[unlikely]]
+            first = std::clamp(first, 0, entries - 32);
         const __m512i rel = _mm512_sub_epi32(idx, _mm512_set1_epi32(first));
         if (!_mm512_cmpge_epu32_mask(rel, _mm512_set1_epi32(32))) [[likely]]
             return _mm512_permutex2var_epi32(_mm512_loadu_si512(table + first), rel,
@@ -438,8 +476,8 @@ OVERFLIGHT_RESOLVE_AVX512 inline __m512i air_sky16(__m512i v, __m512i haze) {
 // go to the images straight from the registers.
 // FogLanes on 16 lanes, the tables read through lookup_near: the same
 // operations in the same order, so the same bits.
-struct FogLanes16 {
-    const ShearResolveTables& t;
+struct FogLanes16 : FogParams {
+    using FogParams::FogParams;
 
     template <bool kTerrain, bool kSky>
     OVERFLIGHT_RESOLVE_AVX512 __m512i shade(const ShearBlock&, int, __m512 m, __m512 len, __m512 d,
@@ -447,18 +485,16 @@ struct FogLanes16 {
         const __m512 half = _mm512_set1_ps(0.5f);
         __m512i fogged = _mm512_setzero_si512(), sky = _mm512_setzero_si512();
         if constexpr (kTerrain) {
-            const __m512 x =
-                _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), _mm512_set1_ps(t.fog->inv_step())), half);
-            const __m512i a =
-                lookup_near(t.fog->entries(), FogTable::kEntries + 1,
-                            _mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(FogTable::kEntries)));
+            const __m512 x = _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), _mm512_set1_ps(fog_step)), half);
+            const __m512i entry = _mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(FogTable::kEntries));
+            const __m512i a = lookup_near(fog, FogTable::kEntries + 1, entry);
             // fog_blend's (c a + f (256 - a) + 128) >> 8 per channel is
             // f + ((c - f) a + 128) >> 8 (256 f is a multiple of 256), and
             // mulhrs((c - f) 128, a) is that shift (as air_blend16).
             const __m512i w = _mm512_or_si512(a, _mm512_slli_epi32(a, 16));
             const __m512i rb = _mm512_set1_epi32(0x00FF00FF);
-            const __m512i f_rb = _mm512_set1_epi32(int(t.fog_color & 0xFF00FFu));
-            const __m512i f_g = _mm512_set1_epi32(int(t.fog_color >> 8 & 0xFFu));
+            const __m512i f_rb = _mm512_set1_epi32(int(fog_color & 0xFF00FFu));
+            const __m512i f_g = _mm512_set1_epi32(int(fog_color >> 8 & 0xFFu));
             const __m512i s_rb = _mm512_and_si512(c, rb);
             const __m512i s_g = _mm512_and_si512(_mm512_srli_epi32(c, 8), _mm512_set1_epi32(0xFF));
             const __m512i out_rb =
@@ -473,46 +509,45 @@ struct FogLanes16 {
             const __m512i e =
                 _mm512_max_epi32(_mm512_min_epi32(_mm512_cvttps_epi32(x), _mm512_set1_epi32(SkyTable::kEntries - 1)),
                                  _mm512_setzero_si512());
-            sky = lookup_near(t.sky, SkyTable::kEntries, e);
+            sky = lookup_near(sky_table, SkyTable::kEntries, e);
         }
         return _mm512_mask_blend_epi32(terrain, sky, fogged);
     }
 };
 
 // AirLanes on 16 lanes, the tables read through lookup_near.
-struct AirLanes16 {
-    const ShearResolveTables& t;
+struct AirLanes16 : AirParams {
+    using AirParams::AirParams;
 
     template <bool kTerrain, bool kSky>
     OVERFLIGHT_RESOLVE_AVX512 __m512i shade(const ShearBlock& blk, int i, __m512 m, __m512 len, __m512 d,
                                             __mmask16 terrain, __m512i c) const {
-        const AerialTables& air = *t.air;
         const __m512 one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
         const __m512 cos_sun =
-            _mm512_div_ps(_mm512_add_ps(_mm512_loadu_ps(blk.sun_dot + i), _mm512_mul_ps(m, _mm512_set1_ps(t.sun_y))),
+            _mm512_div_ps(_mm512_add_ps(_mm512_loadu_ps(blk.sun_dot + i), _mm512_mul_ps(m, _mm512_set1_ps(sun_y))),
                           len);
         const __m512 phase =
             _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(cos_sun, one), _mm512_set1_ps(AerialTables::kPhaseScale)), half);
         const __m512i p = clamp_lanes16(phase, float(AerialTables::kPhases - 1));
-        const __m512i h = lookup_near(air.haze(), AerialTables::kPhases, p);
+        const __m512i h = lookup_near(haze, AerialTables::kPhases, p);
         __m512i pixel = _mm512_setzero_si512();
         if constexpr (kSky) {
             const __m512i q = clamp_lanes16(
                 _mm512_add_ps(_mm512_mul_ps(_mm512_div_ps(m, len), _mm512_set1_ps(float(AerialTables::kSkies - 1))),
                               half),
                 float(AerialTables::kSkies - 1));
-            pixel = air_sky16(lookup_near(air.opacity(), AerialTables::kSkies, q), h);
+            pixel = air_sky16(lookup_near(opacity, AerialTables::kSkies, q), h);
         }
         if constexpr (kTerrain) {
             const __m512i hj = clamp_lanes16(
-                _mm512_add_ps(_mm512_mul_ps(_mm512_sub_ps(_mm512_mul_ps(d, m), _mm512_set1_ps(air.dy_lo())),
-                                            _mm512_set1_ps(air.inv_dy_step())),
+                _mm512_add_ps(_mm512_mul_ps(_mm512_sub_ps(_mm512_mul_ps(d, m), _mm512_set1_ps(dy_lo)),
+                                            _mm512_set1_ps(inv_dy_step)),
                               half),
                 float(AerialTables::kHeights - 1));
-            const __m512 column = _mm512_castsi512_ps(lookup_near(air.column(), AerialTables::kHeights, hj));
+            const __m512 column = _mm512_castsi512_ps(lookup_near(column_table, AerialTables::kHeights, hj));
             const __m512 x = _mm512_add_ps(_mm512_mul_ps(_mm512_mul_ps(d, len), column), half);
             const __m512i w =
-                lookup_near(air.transmit(), AerialTables::kColumns + 1,
+                lookup_near(transmit, AerialTables::kColumns + 1,
                             _mm512_cvttps_epi32(_mm512_min_ps(x, _mm512_set1_ps(float(AerialTables::kColumns)))));
             const __m512i lit = air_blend16(c, w, h);
             pixel = kSky ? _mm512_mask_blend_epi32(terrain, pixel, lit) : lit;
@@ -522,11 +557,19 @@ struct AirLanes16 {
 };
 
 // resolve_rows_avx2 on 16 lanes (FogLanes16 or AirLanes16).
+// The tables and the lanes are read into locals first: the stores to the
+// images could alias anything reached through a reference, so the compiler
+// would load them again for every 16 pixels.
 template <bool kTerrain, bool kSky, bool kEven, class Lanes>
-OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, const Lanes& lanes,
+OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, const Lanes& lanes_in,
                                                    const ShearBlock& blk, int H, int j0, int j1,
                                                    const std::uint32_t* color, const std::uint32_t* slice,
                                                    Rgb8* out_c, float* out_d, std::size_t W) {
+    const Lanes lanes = lanes_in;
+    const float* const row_m = t.row_m;
+    const float* const slice_depth = t.slice_depth;
+    const float* const slice_d = t.slice_d;
+    const int slices = t.slices;
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 d_first = _mm512_set1_ps(t.d_first), d_step = _mm512_set1_ps(t.d_step);
     const __m512i even = _mm512_set1_epi32(t.even);
@@ -536,7 +579,7 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
     const __m512i rgb_words = _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
-        const float mj = t.row_m[j];
+        const float mj = row_m[j];
         const __m512 m = _mm512_set1_ps(mj), m2 = _mm512_set1_ps(mj * mj);
         const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
         const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
@@ -553,13 +596,13 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m512i k = _mm512_maskz_loadu_epi32(terrain, ss + i);
-                const __m512 z = _mm512_castsi512_ps(lookup_near(t.slice_depth, t.slices, k));
+                const __m512 z = _mm512_castsi512_ps(lookup_near(slice_depth, slices, k));
                 if constexpr (kEven) {
                     d = _mm512_add_ps(d_first, _mm512_mul_ps(d_step, _mm512_cvtepi32_ps(k)));
                     if (const __mmask16 beyond = _mm512_cmpge_epi32_mask(k, even)) [[unlikely]]
-                        d = _mm512_mask_mov_ps(d, beyond, _mm512_castsi512_ps(lookup_near(t.slice_d, t.slices, k)));
+                        d = _mm512_mask_mov_ps(d, beyond, _mm512_castsi512_ps(lookup_near(slice_d, slices, k)));
                 } else {
-                    d = _mm512_castsi512_ps(lookup_near(t.slice_d, t.slices, k));
+                    d = _mm512_castsi512_ps(lookup_near(slice_d, slices, k));
                 }
                 c = _mm512_loadu_si512(sc + i);
                 depth = kSky ? _mm512_mask_blend_ps(terrain, one, z) : z;
@@ -618,6 +661,12 @@ template <bool kTerrain, bool kSky, bool kEven>
 void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, int H, int j0, int j1,
                           const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
                           std::size_t W) {
+    // The tables' pointers in locals, as resolve_rows_avx2's.
+    const float* const row_m = t.row_m;
+    const float* const slice_depth = t.slice_depth;
+    const float* const slice_d = t.slice_d;
+    const std::uint32_t* const fog = t.fog->entries();
+    const std::uint32_t* const sky_table = t.sky;
     const v128_t one = wasm_f32x4_splat(1.0f), half = wasm_f32x4_splat(0.5f);
     const v128_t d_first = wasm_f32x4_splat(t.d_first), d_step = wasm_f32x4_splat(t.d_step);
     const v128_t even = wasm_i32x4_splat(t.even);
@@ -631,7 +680,7 @@ void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, in
     const v128_t w_full = wasm_i32x4_splat(256);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
-        const float mj = t.row_m[j];
+        const float mj = row_m[j];
         const v128_t m = wasm_f32x4_splat(mj), m2 = wasm_f32x4_splat(mj * mj);
         const v128_t jv = wasm_i32x4_splat(j);
         const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
@@ -647,17 +696,17 @@ void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, in
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const v128_t k = wasm_v128_and(wasm_v128_load(ss + i), terrain);
-                z = lookup4(t.slice_depth, k);
+                z = lookup4(slice_depth, k);
                 v128_t d;
                 if constexpr (kEven) {
                     d = wasm_f32x4_add(d_first, wasm_f32x4_mul(d_step, wasm_f32x4_convert_i32x4(k)));
                     const v128_t beyond = wasm_i32x4_ge(k, even);
-                    if (wasm_v128_any_true(beyond)) d = wasm_v128_bitselect(lookup4(t.slice_d, k), d, beyond);
+                    if (wasm_v128_any_true(beyond)) d = wasm_v128_bitselect(lookup4(slice_d, k), d, beyond);
                 } else {
-                    d = lookup4(t.slice_d, k);
+                    d = lookup4(slice_d, k);
                 }
                 const v128_t x = wasm_f32x4_add(wasm_f32x4_mul(wasm_f32x4_mul(d, len), fog_step), half);
-                const v128_t a = lookup4(t.fog->entries(), wasm_i32x4_min(wasm_i32x4_trunc_sat_f32x4(x), fog_last));
+                const v128_t a = lookup4(fog, wasm_i32x4_min(wasm_i32x4_trunc_sat_f32x4(x), fog_last));
                 const v128_t b = wasm_i32x4_sub(w_full, a);
                 const v128_t c = wasm_v128_load(sc + i);
                 // fog_blend, lane by lane.
@@ -673,7 +722,7 @@ void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, in
                 const v128_t x = wasm_f32x4_add(wasm_f32x4_mul(wasm_f32x4_div(m, len), sky_scale), half);
                 const v128_t e = wasm_i32x4_max(wasm_i32x4_min(wasm_i32x4_trunc_sat_f32x4(x), sky_last),
                                                 wasm_i32x4_splat(0));
-                sky = lookup4(t.sky, e);
+                sky = lookup4(sky_table, e);
             }
             const v128_t pixel = wasm_v128_bitselect(fogged, sky, terrain);
             const v128_t depth = wasm_v128_bitselect(z, one, terrain);
@@ -753,8 +802,8 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
                                                                    out_c, out_d, W);
             });
         };
-        if (t.air) avx512(AirLanes16{t});
-        else avx512(FogLanes16{t});
+        if (t.air) avx512(AirLanes16(t));
+        else avx512(FogLanes16(t));
         return;
     }
     const auto avx2 = [&](const auto& lanes) {
@@ -765,18 +814,18 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
         });
     };
     if (kernel == ResolveKernel::Avx2Loads) {
-        if (t.air) avx2(AirLanes<LoadLookup>{t});
-        else avx2(FogLanes<LoadLookup>{t});
+        if (t.air) avx2(AirLanes<LoadLookup>(t));
+        else avx2(FogLanes<LoadLookup>(t));
         return;
     }
     if (kernel == ResolveKernel::Avx2Window) {
-        if (t.air) avx2(AirLanes<WindowLookup<LoadLookup>>{t});
-        else avx2(FogLanes<WindowLookup<LoadLookup>>{t});
+        if (t.air) avx2(AirLanes<WindowLookup<LoadLookup>>(t));
+        else avx2(FogLanes<WindowLookup<LoadLookup>>(t));
         return;
     }
     if (kernel == ResolveKernel::Avx2) {
-        if (t.air) avx2(AirLanes<GatherLookup>{t});
-        else avx2(FogLanes<GatherLookup>{t});
+        if (t.air) avx2(AirLanes<GatherLookup>(t));
+        else avx2(FogLanes<GatherLookup>(t));
         return;
     }
 #endif
