@@ -73,13 +73,12 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
         const auto tc = Clock::now();
         FloatingHorizonState::BlockScratch& sc = s.block_scratch.local();
         const std::size_t need = std::size_t(kShearBlock) * std::size_t(H + kPaintRows);
-        if (sc.color.size() < need) {
-            sc.color.resize(need);
-            sc.slice.resize(need);
-        }
+        if (sc.pixels.size() < 2 * need) sc.pixels.resize(2 * need);
+        std::uint32_t* const block_color = sc.pixels.data();
+        std::uint32_t* const block_slice = block_color + need;
         if (sc.jend.size() < std::size_t(kShearBlock)) sc.jend.resize(kShearBlock);
         const int c0 = b * kShearBlock, c1 = std::min(W, c0 + kShearBlock);
-        visited += cast_columns(s.terrain, f, options, c0, c1, sc.color.data(), sc.slice.data(), sc.jend.data(), 1,
+        visited += cast_columns(s.terrain, f, options, c0, c1, block_color, block_slice, sc.jend.data(), 1,
                                 kShearBlock);
         long long px = 0;
         for (int c = c0; c < c1; ++c) px += sc.jend[std::size_t(c - c0)];
@@ -92,9 +91,9 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
             blk.jend[i] = i < blk.n ? sc.jend[std::size_t(i)] : 0;
             blk.sun_dot[i] = float(f_sun + a * r_sun);
         }
-        if (s.imagery.bound()) apply_imagery(s, camera, options, c0, blk, sc.color.data(), sc.slice.data());
+        if (s.imagery.bound()) apply_imagery(s, camera, options, c0, blk, block_color, block_slice);
         const auto tr = Clock::now();
-        resolve_shear_block(tables, blk, H, sc.color.data(), sc.slice.data(), color.pixels.data() + c0,
+        resolve_shear_block(tables, blk, H, block_color, block_slice, color.pixels.data() + c0,
                             depth.pixels.data() + c0, std::size_t(W), options.resolve);
         const auto te = Clock::now();
         cast_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(tr - tc).count();

@@ -56,9 +56,11 @@ struct FloatingHorizonState {
     }
 
     // Shear: one block's cast, row-major within the block, per thread, on
-    // huge pages (HugePages.h: at 4K each array spans 68 pages of 4 KiB).
+    // huge pages (HugePages.h: at 4K the block spans 136 pages of 4 KiB).
     struct BlockScratch {
-        std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> color, slice;
+        // The block's colors, then its slices (kShearBlock x (H + kPaintRows)
+        // each): one allocation, so that both share one 2 MiB page up to 8K.
+        std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> pixels;
         std::vector<int> jend;
     };
     parallel::ThreadLocal<BlockScratch> block_scratch;
