@@ -470,10 +470,6 @@ OVERFLIGHT_RESOLVE_AVX512 inline __m512i air_sky16(__m512i v, __m512i haze) {
     return _mm512_or_si512(out_rb, _mm512_slli_epi32(out_g, 8));
 }
 
-// resolve_rows_portable through the air (t.air) in 16 lanes, the same
-// operations in the same order, so the same bits; the tables are read
-// through lookup_near. kEven: as resolve_rows_avx2. A full block's pixels
-// go to the images straight from the registers.
 // FogLanes on 16 lanes, the tables read through lookup_near: the same
 // operations in the same order, so the same bits.
 struct FogLanes16 : FogParams {
@@ -556,10 +552,12 @@ struct AirLanes16 : AirParams {
     }
 };
 
-// resolve_rows_avx2 on 16 lanes (FogLanes16 or AirLanes16).
-// The tables and the lanes are read into locals first: the stores to the
-// images could alias anything reached through a reference, so the compiler
-// would load them again for every 16 pixels.
+// resolve_rows_avx2 on 16 lanes (FogLanes16 or AirLanes16): the same
+// operations in the same order, so the same bits. kEven: as
+// resolve_rows_avx2; a full block's pixels go to the images straight from
+// the registers. The tables and the lanes are read into locals first: the
+// stores to the images could alias anything reached through a reference, so
+// the compiler would load them again for every 16 pixels.
 template <bool kTerrain, bool kSky, bool kEven, class Lanes>
 OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, const Lanes& lanes_in,
                                                    const ShearBlock& blk, int H, int j0, int j1,
