@@ -151,6 +151,20 @@ void resolve_rows_portable(const ShearResolveTables& t, const ShearBlock& blk, i
     }
 }
 
+// The per-frame tables' pointers that the vector kernels read per row and
+// per pixel, copied into the kernel (as FogParams): the stores to the images
+// could alias anything reached through a reference, so the compiler would
+// load them again for every few pixels.
+struct SliceTables {
+    const float* row_m;
+    const float* slice_depth;
+    const float* slice_d;
+    int slices;
+
+    explicit SliceTables(const ShearResolveTables& t)
+        : row_m(t.row_m), slice_depth(t.slice_depth), slice_d(t.slice_d), slices(t.slices) {}
+};
+
 // Rows [j0, j1) of a block that are all terrain (kTerrain, !kSky), partly
 // terrain (both) or all sky (!kTerrain); kEven: the first slices are evenly
 // spaced (ShearResolveTables::d_step), for the kernels that compute their
@@ -352,23 +366,20 @@ struct AirLanes : AirParams {
 // kEven: the first slices are evenly spaced (ShearResolveTables::d_step), so
 // their view depth is computed rather than gathered. A full block's pixels go
 // to the images straight from the registers.
-// The tables and the lanes are read into locals first (FogParams).
+// The tables and the lanes are read into locals first (SliceTables, FogParams).
 template <bool kTerrain, bool kSky, bool kEven, class Lanes>
 __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables& t, const Lanes& lanes_in,
                                                        const ShearBlock& blk, int H, int j0, int j1,
                                                        const std::uint32_t* color, const std::uint32_t* slice,
                                                        Rgb8* out_c, float* out_d, std::size_t W) {
     const Lanes lanes = lanes_in;
-    const float* const row_m = t.row_m;
-    const float* const slice_depth = t.slice_depth;
-    const float* const slice_d = t.slice_d;
-    const int slices = t.slices;
+    const SliceTables st(t);
     const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 d_first = _mm256_set1_ps(t.d_first), d_step = _mm256_set1_ps(t.d_step);
     const __m256i last_even = _mm256_set1_epi32(t.even - 1);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
-        const float mj = row_m[j];
+        const float mj = st.row_m[j];
         const __m256 m = _mm256_set1_ps(mj), m2 = _mm256_set1_ps(mj * mj);
         const __m256i jv = _mm256_set1_epi32(j);
         const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
@@ -387,15 +398,15 @@ __attribute__((target("avx2"))) void resolve_rows_avx2(const ShearResolveTables&
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m256i k = _mm256_and_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ss + i)), terrain);
-                z = Lanes::Lookup::floats(slice_depth, slices, k);
+                z = Lanes::Lookup::floats(st.slice_depth, st.slices, k);
                 if constexpr (kEven) {
                     d = _mm256_add_ps(d_first, _mm256_mul_ps(d_step, _mm256_cvtepi32_ps(k)));
                     const __m256i beyond = _mm256_cmpgt_epi32(k, last_even);
                     if (!_mm256_testz_si256(beyond, beyond)) [[unlikely]]
-                        d = _mm256_blendv_ps(d, Lanes::Lookup::floats(slice_d, slices, k),
+                        d = _mm256_blendv_ps(d, Lanes::Lookup::floats(st.slice_d, st.slices, k),
                                              _mm256_castsi256_ps(beyond));
                 } else {
-                    d = Lanes::Lookup::floats(slice_d, slices, k);
+                    d = Lanes::Lookup::floats(st.slice_d, st.slices, k);
                 }
                 c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sc + i));
             }
@@ -555,19 +566,15 @@ struct AirLanes16 : AirParams {
 // resolve_rows_avx2 on 16 lanes (FogLanes16 or AirLanes16): the same
 // operations in the same order, so the same bits. kEven: as
 // resolve_rows_avx2; a full block's pixels go to the images straight from
-// the registers. The tables and the lanes are read into locals first: the
-// stores to the images could alias anything reached through a reference, so
-// the compiler would load them again for every 16 pixels.
+// the registers. The tables and the lanes are read into locals first
+// (SliceTables, FogParams).
 template <bool kTerrain, bool kSky, bool kEven, class Lanes>
 OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, const Lanes& lanes_in,
                                                    const ShearBlock& blk, int H, int j0, int j1,
                                                    const std::uint32_t* color, const std::uint32_t* slice,
                                                    Rgb8* out_c, float* out_d, std::size_t W) {
     const Lanes lanes = lanes_in;
-    const float* const row_m = t.row_m;
-    const float* const slice_depth = t.slice_depth;
-    const float* const slice_d = t.slice_d;
-    const int slices = t.slices;
+    const SliceTables st(t);
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 d_first = _mm512_set1_ps(t.d_first), d_step = _mm512_set1_ps(t.d_step);
     const __m512i even = _mm512_set1_epi32(t.even);
@@ -577,7 +584,7 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
     const __m512i rgb_words = _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
-        const float mj = row_m[j];
+        const float mj = st.row_m[j];
         const __m512 m = _mm512_set1_ps(mj), m2 = _mm512_set1_ps(mj * mj);
         const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
         const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
@@ -594,13 +601,13 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const __m512i k = _mm512_maskz_loadu_epi32(terrain, ss + i);
-                const __m512 z = _mm512_castsi512_ps(lookup_near(slice_depth, slices, k));
+                const __m512 z = _mm512_castsi512_ps(lookup_near(st.slice_depth, st.slices, k));
                 if constexpr (kEven) {
                     d = _mm512_add_ps(d_first, _mm512_mul_ps(d_step, _mm512_cvtepi32_ps(k)));
                     if (const __mmask16 beyond = _mm512_cmpge_epi32_mask(k, even)) [[unlikely]]
-                        d = _mm512_mask_mov_ps(d, beyond, _mm512_castsi512_ps(lookup_near(slice_d, slices, k)));
+                        d = _mm512_mask_mov_ps(d, beyond, _mm512_castsi512_ps(lookup_near(st.slice_d, st.slices, k)));
                 } else {
-                    d = _mm512_castsi512_ps(lookup_near(slice_d, slices, k));
+                    d = _mm512_castsi512_ps(lookup_near(st.slice_d, st.slices, k));
                 }
                 c = _mm512_loadu_si512(sc + i);
                 depth = kSky ? _mm512_mask_blend_ps(terrain, one, z) : z;
@@ -660,9 +667,7 @@ void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, in
                           const std::uint32_t* color, const std::uint32_t* slice, Rgb8* out_c, float* out_d,
                           std::size_t W) {
     // The tables' pointers in locals, as resolve_rows_avx2's.
-    const float* const row_m = t.row_m;
-    const float* const slice_depth = t.slice_depth;
-    const float* const slice_d = t.slice_d;
+    const SliceTables st(t);
     const std::uint32_t* const fog = t.fog->entries();
     const std::uint32_t* const sky_table = t.sky;
     const v128_t one = wasm_f32x4_splat(1.0f), half = wasm_f32x4_splat(0.5f);
@@ -678,7 +683,7 @@ void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, in
     const v128_t w_full = wasm_i32x4_splat(256);
     const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
-        const float mj = row_m[j];
+        const float mj = st.row_m[j];
         const v128_t m = wasm_f32x4_splat(mj), m2 = wasm_f32x4_splat(mj * mj);
         const v128_t jv = wasm_i32x4_splat(j);
         const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
@@ -694,14 +699,14 @@ void resolve_rows_simd128(const ShearResolveTables& t, const ShearBlock& blk, in
             if constexpr (kTerrain) {
                 // Sky lanes read slice 0 (their entries are stale).
                 const v128_t k = wasm_v128_and(wasm_v128_load(ss + i), terrain);
-                z = lookup4(slice_depth, k);
+                z = lookup4(st.slice_depth, k);
                 v128_t d;
                 if constexpr (kEven) {
                     d = wasm_f32x4_add(d_first, wasm_f32x4_mul(d_step, wasm_f32x4_convert_i32x4(k)));
                     const v128_t beyond = wasm_i32x4_ge(k, even);
-                    if (wasm_v128_any_true(beyond)) d = wasm_v128_bitselect(lookup4(slice_d, k), d, beyond);
+                    if (wasm_v128_any_true(beyond)) d = wasm_v128_bitselect(lookup4(st.slice_d, k), d, beyond);
                 } else {
-                    d = lookup4(slice_d, k);
+                    d = lookup4(st.slice_d, k);
                 }
                 const v128_t x = wasm_f32x4_add(wasm_f32x4_mul(wasm_f32x4_mul(d, len), fog_step), half);
                 const v128_t a = lookup4(fog, wasm_i32x4_min(wasm_i32x4_trunc_sat_f32x4(x), fog_last));
