@@ -362,10 +362,14 @@ TEST(ShearResolve, BlocksStartWhereDepthRowsStartLines) {
             EXPECT_EQ(blocks.end(blocks.count - 1), W) << "skip " << skip << " W " << W;
             for (int b = 0; b < blocks.count; ++b) {
                 EXPECT_LT(blocks.begin(b), blocks.end(b));
-                if (b > 0) EXPECT_EQ(blocks.begin(b), blocks.end(b - 1));
+                if (b > 0) {
+                    EXPECT_EQ(blocks.begin(b), blocks.end(b - 1));
+                }
                 if (b > 0 || lead == 0) {
                     EXPECT_EQ(reinterpret_cast<std::uintptr_t>(depth + blocks.begin(b)) % 64, 0u);
-                    if (b + 1 < blocks.count) EXPECT_EQ(blocks.end(b) - blocks.begin(b), kShearBlock);
+                    if (b + 1 < blocks.count) {
+                        EXPECT_EQ(blocks.end(b) - blocks.begin(b), kShearBlock);
+                    }
                 } else {
                     EXPECT_EQ(blocks.end(0), lead);
                 }
