@@ -596,7 +596,7 @@ DataSet load_checked(GDALDatasetH src_ds, const std::string& path, const std::st
             if (!imagery.warning.empty()) info.warnings.push_back(imagery.warning);
         } else {
             ColorResult color = color_on_grid(color_path, grid, data.terrain.colors());
-            data.terrain.colors() = std::move(color.image.pixels);
+            data.terrain.colors().assign(color.image.pixels.begin(), color.image.pixels.end());
             info.color_source = color.description;
         }
     } else {

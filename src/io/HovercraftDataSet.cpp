@@ -102,7 +102,7 @@ DataSet load_hovercraft(const std::string& dir) {
 
     DataSet data;
     data.terrain = Terrain(hf.image.height, hf.image.width, float(map.h_scale), float(map.v_scale), float(map.y_offset));
-    data.terrain.heights() = std::move(hf.image.pixels);
+    data.terrain.heights().assign(hf.image.pixels.begin(), hf.image.pixels.end());
     const Terrain& t = data.terrain;
     if (map.start.given && !t.contains(float(map.start.x), float(map.start.z)))
         throw Error(map_path, "[vehicle] start x = " + number(map.start.x) + ", z = " + number(map.start.z) +
@@ -124,10 +124,11 @@ DataSet load_hovercraft(const std::string& dir) {
         ColorImage color = read_ppm(color_path);
         const int rows = data.terrain.rows(), cols = data.terrain.cols();
         if (color.width == cols - 1 && color.height == rows - 1) {
-            data.terrain.colors() = cell_colors_to_samples(color).pixels;
+            const ColorImage samples = cell_colors_to_samples(color);
+            data.terrain.colors().assign(samples.pixels.begin(), samples.pixels.end());
             info.color_source = color_path + " (one pixel per grid cell, averaged to samples)";
         } else if (color.width == cols && color.height == rows) {
-            data.terrain.colors() = std::move(color.pixels);
+            data.terrain.colors().assign(color.pixels.begin(), color.pixels.end());
             info.color_source = color_path + " (one pixel per sample)";
         } else if (color.width >= cols && color.height >= rows) {
             // Finer than the grid: imagery at its own resolution over the grid squares.
@@ -159,7 +160,7 @@ void save_hovercraft(const std::string& dir, const DataSet& data) {
     Image2D<std::uint16_t> hf;
     hf.width = t.cols();
     hf.height = t.rows();
-    hf.pixels = t.heights();
+    hf.pixels.assign(t.heights().begin(), t.heights().end());
     write_pgm((root / "hf.pgm").string(), hf, 65535);
     write_ppm((root / "color.ppm").string(), sample_colors_to_cells(t));
     MapFile map;

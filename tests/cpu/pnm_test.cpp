@@ -81,7 +81,7 @@ TEST(Pnm, Pgm8RoundTripClampsToMaxval) {
     write_pgm(dir / "a.pgm", img, 255);
     const GrayImage16 back = read_pgm(dir / "a.pgm");
     EXPECT_EQ(back.maxval, 255);
-    EXPECT_EQ(back.image.pixels, (std::vector<std::uint16_t>{7, 255}));
+    EXPECT_EQ(back.image.pixels, (ImagePixels<std::uint16_t>{7, 255}));
 }
 
 TEST(Pnm, PpmRoundTrip) {

@@ -347,8 +347,8 @@ TEST(ImageWriters, PngRoundTrip) {
     write_png(dir / "out.png", img);
     // Bands 1..3 are R, G, B; row 0 is the top.
     const Image2D<float> r = read_raster_band(dir / "out.png", 1), b = read_raster_band(dir / "out.png", 3);
-    EXPECT_EQ(r.pixels, (std::vector<float>{255, 0, 0, 10}));
-    EXPECT_EQ(b.pixels, (std::vector<float>{0, 0, 255, 30}));
+    EXPECT_EQ(r.pixels, (ImagePixels<float>{255, 0, 0, 10}));
+    EXPECT_EQ(b.pixels, (ImagePixels<float>{0, 0, 255, 30}));
 }
 
 TEST(ImageWriters, FailureLeavesNothingBehind) {
