@@ -336,6 +336,11 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     split64(sz, steps.iz, steps.fz);
     at.set(gx, gz, sx, sz, 0);
     ahead.set(gx, gz, sx, sz, kAhead);
+    Cursor coarse_step; // kRunCoarse steps
+    {
+        alignas(64) const std::int64_t none[kLanes] = {};
+        coarse_step.set(none, none, sx, sz, kRunCoarse);
+    }
     const std::size_t last_sample = t.terrain.heights().size() - 1;
     const __m512i last_v = _mm512_set1_epi32(int(last_sample));
     const __m512i zero = _mm512_setzero_si512();
@@ -394,6 +399,28 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             next_v = _mm512_mask_mov_epi32(next_v, skip, k_coarse);
             kc_v = _mm512_mask_mov_epi32(kc_v, skip, k_coarse);
             kc_v = _mm512_mask_min_epi32(kc_v, at_coarse & ~skip, k_coarse, k1_v);
+            if (skip && skip == __mmask16(live)) {
+                // Every lane skips a coarse run, so none casts and the
+                // horizons stay put: the rounds due at the next coarse ends
+                // would make the same tests of the same lanes. They are made
+                // here in a row, each run's box read from positions stepped
+                // on rather than after the previous round's outcome (which
+                // kept one round's latency per run), up to the first run not
+                // every lane skips or a round where a lane would end or run
+                // out of coarse runs; that round is left to the loop.
+                const int k1_min = _mm512_mask_reduce_min_epi32(__mmask16(live), k1_v);
+                Cursor on = at;
+                on.step(coarse_step);
+                int kk = k + kRunCoarse;
+                while (kk + kRunCoarse <= k1_min &&
+                       !_mm512_mask_cmp_ps_mask(__mmask16(live), _mm512_set1_ps(smax[kk]), mj, _CMP_LE_OQ) &&
+                       runs_below(skip, ma, mb, kk, kRunCoarse, coarse_runs.max_height(skip, on, gx, gz), mj) == skip) {
+                    kk += kRunCoarse;
+                    on.step(coarse_step);
+                }
+                next_v = _mm512_mask_mov_epi32(next_v, skip, _mm512_set1_epi32(kk));
+                kc_v = _mm512_mask_mov_epi32(kc_v, skip, _mm512_set1_epi32(kk));
+            }
             due_now &= ~skip;
             const __m512i k_fine = _mm512_set1_epi32(k + kRunFine);
             skip = _mm512_mask_cmple_epi32_mask(due_now & ~hot & fine_runs.usable(), k_fine, kc_v);
