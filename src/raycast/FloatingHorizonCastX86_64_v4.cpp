@@ -336,10 +336,11 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     split64(sz, steps.iz, steps.fz);
     at.set(gx, gz, sx, sz, 0);
     ahead.set(gx, gz, sx, sz, kAhead);
-    Cursor coarse_step; // kRunCoarse steps
+    Cursor coarse_step, fine_step; // kRunCoarse and kRunFine steps
     {
         alignas(64) const std::int64_t none[kLanes] = {};
         coarse_step.set(none, none, sx, sz, kRunCoarse);
+        fine_step.set(none, none, sx, sz, kRunFine);
     }
     const std::size_t last_sample = t.terrain.heights().size() - 1;
     const __m512i last_v = _mm512_set1_epi32(int(last_sample));
@@ -426,6 +427,20 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             skip = _mm512_mask_cmple_epi32_mask(due_now & ~hot & fine_runs.usable(), k_fine, kc_v);
             if (skip) skip = runs_below(skip, ma, mb, k, kRunFine, fine_runs.max_height(skip, at, gx, gz), mj);
             next_v = _mm512_mask_mov_epi32(next_v, skip, k_fine);
+            if (skip && skip == __mmask16(live)) {
+                // Every lane skips a fine run: as above, the rounds due at
+                // the next fine ends within every lane's coarse run.
+                const int kc_min = _mm512_mask_reduce_min_epi32(__mmask16(live), kc_v);
+                Cursor on = at;
+                on.step(fine_step);
+                int kk = k + kRunFine;
+                while (kk + kRunFine <= kc_min &&
+                       runs_below(skip, ma, mb, kk, kRunFine, fine_runs.max_height(skip, on, gx, gz), mj) == skip) {
+                    kk += kRunFine;
+                    on.step(fine_step);
+                }
+                next_v = _mm512_mask_mov_epi32(next_v, skip, _mm512_set1_epi32(kk));
+            }
             const __mmask16 cast = due_now & ~skip;
             next_v = _mm512_mask_min_epi32(next_v, cast, k_fine, kc_v);
             casting |= cast;
