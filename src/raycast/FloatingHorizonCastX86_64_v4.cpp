@@ -374,6 +374,28 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     __mmask16 fetched = 0;
     unsigned active = 0; // lanes casting slice k
     int due = k;         // the first slice where a lane's test is due
+    // When every lane skips a run, none casts and the horizons stay put, so
+    // the rounds due at the next runs' ends would make the same tests of the
+    // same lanes: they are made here in a row, each run's box read from
+    // positions stepped on rather than after the previous round's outcome
+    // (which cost one round's latency per run). From slice k + run while
+    // every lane in `lanes` skips its run of `run` slices ending by `limit`
+    // and, with `ends`, no lane's column would end at the run's start (smax,
+    // as the round tests it); returns the slice of the first round left to
+    // the loop.
+    auto skip_in_a_row = [&](__mmask16 lanes, const LaneRuns& runs, const Cursor& run_step, int run, int limit,
+                             __m512 mj, bool ends) __attribute__((always_inline)) {
+        Cursor on = at;
+        on.step(run_step);
+        int kk = k + run;
+        while (kk + run <= limit &&
+               !(ends && _mm512_mask_cmp_ps_mask(lanes, _mm512_set1_ps(smax[kk]), mj, _CMP_LE_OQ)) &&
+               runs_below(lanes, ma, mb, kk, run, runs.max_height(lanes, on, gx, gz), mj) == lanes) {
+            kk += run;
+            on.step(run_step);
+        }
+        return kk;
+    };
     for (;;) {
         if (k == due) {
             // cast_run's decisions for the lanes whose test is due, all at
@@ -401,24 +423,8 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             kc_v = _mm512_mask_mov_epi32(kc_v, skip, k_coarse);
             kc_v = _mm512_mask_min_epi32(kc_v, at_coarse & ~skip, k_coarse, k1_v);
             if (skip && skip == __mmask16(live)) {
-                // Every lane skips a coarse run, so none casts and the
-                // horizons stay put: the rounds due at the next coarse ends
-                // would make the same tests of the same lanes. They are made
-                // here in a row, each run's box read from positions stepped
-                // on rather than after the previous round's outcome (which
-                // kept one round's latency per run), up to the first run not
-                // every lane skips or a round where a lane would end or run
-                // out of coarse runs; that round is left to the loop.
-                const int k1_min = _mm512_mask_reduce_min_epi32(__mmask16(live), k1_v);
-                Cursor on = at;
-                on.step(coarse_step);
-                int kk = k + kRunCoarse;
-                while (kk + kRunCoarse <= k1_min &&
-                       !_mm512_mask_cmp_ps_mask(__mmask16(live), _mm512_set1_ps(smax[kk]), mj, _CMP_LE_OQ) &&
-                       runs_below(skip, ma, mb, kk, kRunCoarse, coarse_runs.max_height(skip, on, gx, gz), mj) == skip) {
-                    kk += kRunCoarse;
-                    on.step(coarse_step);
-                }
+                const int kk = skip_in_a_row(skip, coarse_runs, coarse_step, kRunCoarse,
+                                             _mm512_mask_reduce_min_epi32(skip, k1_v), mj, true);
                 next_v = _mm512_mask_mov_epi32(next_v, skip, _mm512_set1_epi32(kk));
                 kc_v = _mm512_mask_mov_epi32(kc_v, skip, _mm512_set1_epi32(kk));
             }
@@ -427,18 +433,9 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             skip = _mm512_mask_cmple_epi32_mask(due_now & ~hot & fine_runs.usable(), k_fine, kc_v);
             if (skip) skip = runs_below(skip, ma, mb, k, kRunFine, fine_runs.max_height(skip, at, gx, gz), mj);
             next_v = _mm512_mask_mov_epi32(next_v, skip, k_fine);
-            if (skip && skip == __mmask16(live)) {
-                // Every lane skips a fine run: as above, the rounds due at
-                // the next fine ends within every lane's coarse run.
-                const int kc_min = _mm512_mask_reduce_min_epi32(__mmask16(live), kc_v);
-                Cursor on = at;
-                on.step(fine_step);
-                int kk = k + kRunFine;
-                while (kk + kRunFine <= kc_min &&
-                       runs_below(skip, ma, mb, kk, kRunFine, fine_runs.max_height(skip, on, gx, gz), mj) == skip) {
-                    kk += kRunFine;
-                    on.step(fine_step);
-                }
+            if (skip && skip == __mmask16(live)) { // fine runs within every lane's coarse run
+                const int kk = skip_in_a_row(skip, fine_runs, fine_step, kRunFine,
+                                             _mm512_mask_reduce_min_epi32(skip, kc_v), mj, false);
                 next_v = _mm512_mask_mov_epi32(next_v, skip, _mm512_set1_epi32(kk));
             }
             const __mmask16 cast = due_now & ~skip;
