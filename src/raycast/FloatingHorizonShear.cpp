@@ -69,7 +69,10 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
     std::atomic<long long> visited{0}, painted{0};
     // Thread time of each step, summed over the blocks (nanoseconds).
     std::atomic<long long> cast_ns{0}, resolve_ns{0};
-    parallel::for_each_index(0, blocks.count, [&](int b) {
+    const bool backwards = s.blocks_backwards;
+    s.blocks_backwards = !backwards;
+    parallel::for_each_index(0, blocks.count, [&](int nth) {
+        const int b = backwards ? blocks.count - 1 - nth : nth;
         const auto tc = Clock::now();
         FloatingHorizonState::BlockScratch& sc = s.block_scratch.local();
         const std::size_t need = std::size_t(kShearBlock) * std::size_t(H + kPaintRows);

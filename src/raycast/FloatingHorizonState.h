@@ -64,6 +64,11 @@ struct FloatingHorizonState {
         std::vector<int> jend;
     };
     parallel::ThreadLocal<BlockScratch> block_scratch;
+    // Shear: the blocks go right to left in every other frame, so that a
+    // frame's first blocks write image lines that the previous frame wrote
+    // last, which the last-level cache may still hold (the 58 MB of a 4K
+    // frame's color and depth do not fit in it whole).
+    bool blocks_backwards = false;
 
     // Tilt: the whole image's cast, column-major (one cast column after the other).
     TiltRows tilt_rows;
