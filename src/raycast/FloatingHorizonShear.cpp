@@ -42,9 +42,11 @@ void apply_imagery(const FloatingHorizonState& s, const Camera& camera, const Ra
     drape_shear_block(frame, dir_x, dir_z, blk.n, blk.jend, color, slice, options.resolve);
 }
 
-// Casts and resolves the blocks (ShearBlocks) in parallel: a block is cast
-// into a per-thread scratch that stays in L2 and resolved from there into
-// runs of kShearBlock pixels of image rows (ShearResolve).
+// Casts and resolves the blocks of kShearBlock columns in parallel: a block
+// is cast into a per-thread scratch that stays in L2 and resolved from there
+// into runs of kShearBlock pixels of image rows (ShearResolve). Images start
+// a cache line (ImageAllocator), so at widths that are multiples of 16 every
+// full block writes each depth row as whole lines that no other block writes.
 void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, const RaycastOptions& options,
                              ColorImage& color, DepthImage& depth, RaycastStats& stats) {
     const auto t0 = Clock::now();
@@ -65,14 +67,14 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
     // The sun along each column's plane direction F + a R, per unit of view depth.
     const glm::dvec3 F = camera.forward(), R = camera.right();
     const double f_sun = glm::dot(F, s.sun), r_sun = glm::dot(R, s.sun);
-    const ShearBlocks blocks(W, depth.pixels.data());
+    const int blocks = (W + kShearBlock - 1) / kShearBlock;
     std::atomic<long long> visited{0}, painted{0};
     // Thread time of each step, summed over the blocks (nanoseconds).
     std::atomic<long long> cast_ns{0}, resolve_ns{0};
     const bool backwards = s.blocks_backwards;
     s.blocks_backwards = !backwards;
-    parallel::for_each_index(0, blocks.count, [&](int nth) {
-        const int b = backwards ? blocks.count - 1 - nth : nth;
+    parallel::for_each_index(0, blocks, [&](int nth) {
+        const int b = backwards ? blocks - 1 - nth : nth;
         const auto tc = Clock::now();
         FloatingHorizonState::BlockScratch& sc = s.block_scratch.local();
         const std::size_t need = std::size_t(kShearBlock) * std::size_t(H + kPaintRows);
@@ -80,7 +82,7 @@ void cast_and_resolve_blocks(FloatingHorizonState& s, const Camera& camera, cons
         std::uint32_t* const block_color = sc.pixels.data();
         std::uint32_t* const block_slice = block_color + need;
         if (sc.jend.size() < std::size_t(kShearBlock)) sc.jend.resize(kShearBlock);
-        const int c0 = blocks.begin(b), c1 = blocks.end(b);
+        const int c0 = b * kShearBlock, c1 = std::min(W, c0 + kShearBlock);
         visited += cast_columns(s.terrain, f, options, c0, c1, block_color, block_slice, sc.jend.data(), 1,
                                 kShearBlock);
         long long px = 0;

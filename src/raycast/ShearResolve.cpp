@@ -771,12 +771,6 @@ bool resolve_kernel_available(ResolveKernel kernel) {
     return false;
 }
 
-ShearBlocks::ShearBlocks(int W, const float* depth) : W_(W) {
-    const std::size_t misalign = reinterpret_cast<std::uintptr_t>(depth) % 64;
-    lead_ = std::min(W, int((64 - misalign) % 64 / sizeof(float)));
-    count = (lead_ > 0) + (W - lead_ + kShearBlock - 1) / kShearBlock;
-}
-
 void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int H, const std::uint32_t* color,
                          const std::uint32_t* slice, Rgb8* out_c, float* out_d, std::size_t W, ResolveKernel kernel) {
     // Rows below every column's horizon are all terrain, rows above all sky.

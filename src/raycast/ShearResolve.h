@@ -16,31 +16,12 @@
 #include "raycast/Atmosphere.h"
 #include "raycast/RaycastOptions.h" // ResolveKernel
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
 namespace overflight {
 
 constexpr int kShearBlock = 32; // image columns per block
-
-// The blocks of a frame W columns wide whose depth image starts at `depth`:
-// the first takes the columns before the first whose depth lies at the start
-// of a cache line (none when column 0's does), the others kShearBlock each
-// from there, the last the rest. So when W is a multiple of 16, every full
-// block's run of every depth row is two whole 64-byte lines: no line of the
-// depth image is written by two blocks, which would each load it (a 4K
-// frame's images are larger than a last-level cache, so the line has left
-// it by the time the second block writes its part).
-struct ShearBlocks {
-    ShearBlocks(int W, const float* depth);
-    int count = 0;
-    int begin(int b) const { return b == 0 ? 0 : lead_ + (b - (lead_ > 0)) * kShearBlock; }
-    int end(int b) const { return std::min(W_, b == 0 && lead_ > 0 ? lead_ : begin(b) + kShearBlock); }
-
-private:
-    int W_ = 0, lead_ = 0;
-};
 
 // Per-frame tables, shared by all blocks.
 struct ShearResolveTables {

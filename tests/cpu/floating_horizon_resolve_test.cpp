@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdint>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -345,34 +344,4 @@ TEST(ShearResolve, KernelsAgreeOnSmoothLanes) {
                 << int(kernel) << (tables->air ? " air" : " fog");
         }
     }
-}
-
-// A frame's blocks: the first up to the first column whose depth starts a
-// cache line, then kShearBlock columns each, the last the rest; together
-// every column once, in order.
-TEST(ShearResolve, BlocksStartWhereDepthRowsStartLines) {
-    alignas(64) static float row[256];
-    for (int skip : {0, 1, 4, 15})
-        for (int W : {1, 10, 32, 100, 256 - skip}) {
-            const float* depth = row + skip;
-            const ShearBlocks blocks(W, depth);
-            const int lead = std::min(W, skip == 0 ? 0 : 16 - skip);
-            ASSERT_GE(blocks.count, 1);
-            EXPECT_EQ(blocks.begin(0), 0);
-            EXPECT_EQ(blocks.end(blocks.count - 1), W) << "skip " << skip << " W " << W;
-            for (int b = 0; b < blocks.count; ++b) {
-                EXPECT_LT(blocks.begin(b), blocks.end(b));
-                if (b > 0) {
-                    EXPECT_EQ(blocks.begin(b), blocks.end(b - 1));
-                }
-                if (b > 0 || lead == 0) {
-                    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(depth + blocks.begin(b)) % 64, 0u);
-                    if (b + 1 < blocks.count) {
-                        EXPECT_EQ(blocks.end(b) - blocks.begin(b), kShearBlock);
-                    }
-                } else {
-                    EXPECT_EQ(blocks.end(0), lead);
-                }
-            }
-        }
 }

@@ -1,7 +1,9 @@
 // assign_on_huge_pages: the contents of vector::assign, storage kept when it
 // suffices; HugePageAllocator: whole aligned huge pages; and, where the
-// kernel offers transparent huge pages on advice, both backed by them.
+// kernel offers transparent huge pages on advice, both backed by them;
+// Image2D's storage (ImageAllocator): on a cache line, large images advised.
 #include "core/HugePages.h"
+#include "core/Image.h"
 
 #include <gtest/gtest.h>
 
@@ -84,6 +86,23 @@ TEST(HugePages, AllocatorGivesWholeAlignedHugePages) {
     // All but one of its 6 pages (a sanitizer's allocator writes its own
     // header into the first before the advice).
     EXPECT_GE(huge_kib_at(v.data()), 10 * 1024) << "mode " << mode;
+}
+
+// The renderers rely on it: a block of 32 columns at a width that is a
+// multiple of 16 then writes whole depth lines (FloatingHorizonShear).
+TEST(HugePages, ImagesStartACacheLine) {
+    for (const int w : {1, 3, 1366, 3840}) {
+        const ColorImage color(w, 7);
+        const DepthImage depth(w, 2160);
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(color.pixels.data()) % 64, 0u) << w;
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(depth.pixels.data()) % 64, 0u) << w;
+        EXPECT_EQ(depth.at(w - 1, 2159), 0.0f);
+    }
+    DepthImage grown;
+    grown.resize(4, 4, 1.0f);
+    grown.resize(3840, 2160, 0.5f);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(grown.pixels.data()) % 64, 0u);
+    EXPECT_EQ(grown.at(3839, 2159), 0.5f);
 }
 
 } // namespace
