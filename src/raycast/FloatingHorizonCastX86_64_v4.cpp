@@ -40,6 +40,17 @@ constexpr int kAhead = 8;
 // Rows a lane paints from its horizon up in one store (the rows it does not
 // reach are painted again or lie above its column's top).
 constexpr int kLanePaintRows = 8;
+// A lane paints the low 8 bits of the slice index into the packed color's
+// free top byte (0x00BBGGRR: no light mask here) instead of a second stripe
+// of slice indices. A column's rows are painted from slices that never
+// decrease upwards (Algorithm 1 paints a row once, front to back), so a row's
+// slice is the row below's plus the difference of their low bits modulo 256,
+// wherever the step between the two is below 256 slices; where it is not (a
+// lane's first rise, or a rise after a gap of 256 slices or more) the rise is
+// a jump, kept aside with its row and slice. Consecutive jumps of a lane are
+// at least 256 slices apart, so a lane has at most k_end / 256 + 1 of them.
+constexpr int kSliceLowBits = 8;
+constexpr int kSliceLowMask = (1 << kSliceLowBits) - 1;
 
 // 16 signed 64-bit values split into their high and low 32 bits (a 32.32
 // position's integer part and fraction), and joined back.
@@ -279,8 +290,9 @@ inline float row_guess_margin(const float* rows, int nrows, float m0, float inv_
 // that a lane rises when that row lies above its horizon and no lane waits on
 // another's painting. Lane l paints its own stripe
 // (column-major: kLanePaintRows rows from the horizon up in one store, as the
-// scalar cast does row by row); the stripes are transposed into the block at
-// the end. The tests of run skipping are cast_run's, due at the same slices
+// scalar cast does row by row), the color with the slice's low bits
+// (kSliceLowBits); the stripes are transposed into the block at the end, and
+// the slice indices restored row by row from the row below and the jumps. The tests of run skipping are cast_run's, due at the same slices
 // with the same outcome, made for all the lanes due at a slice at once
 // (LaneRuns, runs_below); when all lanes skip: on to the first slice where a
 // test is due.
@@ -353,11 +365,19 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     const __m512 row_margin = _mm512_set1_ps(row_margin_f);
     const __m512 row_margin_up = _mm512_set1_ps(1.0f - row_margin_f);
     // Each lane paints its own column-major stripe (kLanePaintRows rows of
-    // padding, whole 16-row tiles), copied to the output at the end.
+    // padding, whole 16-row tiles), copied to the output at the end; after
+    // the stripes, each lane's jumps (kSliceLowBits): their rows, then their
+    // slices, up to `jumps_cap` of each.
     const std::ptrdiff_t stripe = (nrows + kLanePaintRows + 15) / 16 * 16;
+    const std::ptrdiff_t jumps_cap = k_end / (kSliceLowMask + 1) + 2;
     thread_local Stripes stripes;
-    std::uint32_t* const stripe_c = stripes.get(std::size_t(2 * kLanes * stripe));
-    std::uint32_t* const stripe_s = stripe_c + kLanes * stripe;
+    std::uint32_t* const stripe_c = stripes.get(std::size_t(kLanes * (stripe + 2 * jumps_cap)));
+    std::uint32_t* const jump_row = stripe_c + kLanes * stripe;
+    std::uint32_t* const jump_k = jump_row + kLanes * jumps_cap;
+    alignas(64) int jumps[kLanes] = {};
+    // The slice of each lane's last rise (none yet: its first is a jump).
+    __m512i k_rose = _mm512_set1_epi32(INT_MIN / 2);
+    const __m512i jump_min = _mm512_set1_epi32(kSliceLowMask + 1);
     __m512i j = _mm512_setzero_si512();
     // cast_run's state per lane: the last slice, the next slice where a test
     // is due, the end of the current coarse run, the row when the current
@@ -506,13 +526,21 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             alignas(64) int jv_now[kLanes];
             alignas(64) std::uint32_t wv[kLanes];
             _mm512_store_si512(jv_now, j);
-            _mm512_store_si512(wv, word);
-            const __m256i kv = _mm256_set1_epi32(k);
-            for (int l = 0; l < kLanes; ++l) {
-                const std::ptrdiff_t p = std::ptrdiff_t(l) * stripe + jv_now[l];
-                _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_c + p), _mm256_set1_epi32(int(wv[l])));
-                _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_s + p), kv);
+            _mm512_store_si512(wv, _mm512_or_si512(word, _mm512_set1_epi32(int(unsigned(k) << 24))));
+            const __m512i kv = _mm512_set1_epi32(k);
+            if (const unsigned jump = _mm512_mask_cmpge_epi32_mask(up, _mm512_sub_epi32(kv, k_rose), jump_min))
+                [[unlikely]] {
+                for (unsigned m = jump; m; m &= m - 1) {
+                    const int l = std::countr_zero(m);
+                    jump_row[l * jumps_cap + jumps[l]] = std::uint32_t(jv_now[l]);
+                    jump_k[l * jumps_cap + jumps[l]] = std::uint32_t(k);
+                    ++jumps[l];
+                }
             }
+            k_rose = _mm512_mask_mov_epi32(k_rose, up, kv);
+            for (int l = 0; l < kLanes; ++l)
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_c + std::ptrdiff_t(l) * stripe + jv_now[l]),
+                                    _mm256_set1_epi32(int(wv[l])));
             if (const unsigned tall = _mm512_mask_cmpgt_epi32_mask(up, _mm512_sub_epi32(top, j), paint_rows_v))
                 [[unlikely]] {
                 alignas(64) int tv[kLanes];
@@ -520,10 +548,8 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
                 for (unsigned m = tall; m; m &= m - 1) {
                     const int l = std::countr_zero(m);
                     const __m256i c = _mm256_set1_epi32(int(wv[l]));
-                    for (int r = jv_now[l] + kLanePaintRows; r < tv[l]; r += kLanePaintRows) {
+                    for (int r = jv_now[l] + kLanePaintRows; r < tv[l]; r += kLanePaintRows)
                         _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_c + std::ptrdiff_t(l) * stripe + r), c);
-                        _mm256_storeu_si256(reinterpret_cast<__m256i*>(stripe_s + std::ptrdiff_t(l) * stripe + r), kv);
-                    }
                 }
             }
             j = _mm512_mask_mov_epi32(j, up, top);
@@ -555,23 +581,47 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
         gather_records(__mmask16(active), ci, records, next_word, next_raw);
         fetched = __mmask16(active);
     }
-    // The stripes to the block's rows [0, jend) of each column, 16 x 16 tiles transposed.
+    // The stripes to the block's rows [0, jend) of each column, 16 x 16 tiles
+    // transposed; each row's slices from the row below's and its low bits,
+    // or from the lane's next jump where it starts at the row.
     int top = 0;
     for (int l = 0; l < c1 - c0; ++l) top = std::max(top, jend[l]);
     const __mmask16 lanes = __mmask16((1u << (c1 - c0)) - 1);
-    for (int r0 = 0; r0 < top; r0 += 16)
-        for (int which = 0; which < 2; ++which) {
-            const std::uint32_t* from = (which == 0 ? stripe_c : stripe_s) + r0;
-            std::uint32_t* to = (which == 0 ? color : slice) + std::ptrdiff_t(r0) * kBlock;
-            __m512i v[16];
-            for (int l = 0; l < 16; ++l) v[l] = _mm512_loadu_si512(from + l * stripe);
-            transpose16(v);
-            const int n = std::min(16, top - r0);
-            if (lanes == 0xFFFF)
-                for (int r = 0; r < n; ++r) _mm512_storeu_si512(to + r * kBlock, v[r]);
-            else
-                for (int r = 0; r < n; ++r) _mm512_mask_storeu_epi32(to + r * kBlock, lanes, v[r]);
+    alignas(64) int next_jump[kLanes], jump_at[kLanes], jump_slice[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+        next_jump[l] = 0;
+        jump_at[l] = jumps[l] > 0 ? int(jump_row[l * jumps_cap]) : INT_MAX;
+        jump_slice[l] = jumps[l] > 0 ? int(jump_k[l * jumps_cap]) : 0;
+    }
+    __m512i jump_at_v = _mm512_load_si512(jump_at), jump_slice_v = _mm512_load_si512(jump_slice);
+    const __m512i low_mask = _mm512_set1_epi32(kSliceLowMask), color_mask = _mm512_set1_epi32(0x00FFFFFF);
+    __m512i below = _mm512_setzero_si512(); // the slices of the row below
+    for (int r0 = 0; r0 < top; r0 += 16) {
+        __m512i v[16];
+        for (int l = 0; l < 16; ++l) v[l] = _mm512_loadu_si512(stripe_c + r0 + l * stripe);
+        transpose16(v);
+        const int n = std::min(16, top - r0);
+        for (int r = 0; r < n; ++r) {
+            const __m512i low = _mm512_srli_epi32(v[r], 32 - kSliceLowBits);
+            __m512i ks = _mm512_add_epi32(below, _mm512_and_si512(_mm512_sub_epi32(low, below), low_mask));
+            if (const unsigned jump = _mm512_cmpeq_epi32_mask(jump_at_v, _mm512_set1_epi32(r0 + r))) [[unlikely]] {
+                ks = _mm512_mask_mov_epi32(ks, __mmask16(jump), jump_slice_v);
+                _mm512_store_si512(jump_at, jump_at_v);
+                _mm512_store_si512(jump_slice, jump_slice_v);
+                for (unsigned m = jump; m; m &= m - 1) {
+                    const int l = std::countr_zero(m);
+                    const int i = ++next_jump[l];
+                    jump_at[l] = i < jumps[l] ? int(jump_row[l * jumps_cap + i]) : INT_MAX;
+                    jump_slice[l] = i < jumps[l] ? int(jump_k[l * jumps_cap + i]) : 0;
+                }
+                jump_at_v = _mm512_load_si512(jump_at);
+                jump_slice_v = _mm512_load_si512(jump_slice);
+            }
+            below = ks;
+            _mm512_mask_storeu_epi32(color + std::ptrdiff_t(r0 + r) * kBlock, lanes, _mm512_and_si512(v[r], color_mask));
+            _mm512_mask_storeu_epi32(slice + std::ptrdiff_t(r0 + r) * kBlock, lanes, ks);
         }
+    }
     return visited;
 }
 

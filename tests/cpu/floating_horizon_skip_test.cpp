@@ -339,3 +339,58 @@ TEST(FloatingHorizonCastKernels, SameImageOnEveryInstructionSet) {
                     }
     }
 }
+
+// The 16-lane cast paints only a slice index's low 8 bits beside the color
+// and restores the index from the row below, keeping aside each rise that
+// comes 256 slices or more after its column's last one: walls across the
+// view, each taller than the horizon the previous one left, at gaps of 255,
+// 256, 257, 300 and 600 one-cell slices behind each other (the view looks
+// along the grid's rows, so every column reaches a wall at the same slice),
+// must paint the same slices (window depths) as the portable cast.
+TEST(FloatingHorizonCastKernels, SameSlicesAfterLongGaps) {
+    if (!cast_kernel_available(CastKernel::X86_64_v3)) GTEST_SKIP() << "no x86-64-v3 on this CPU";
+    Terrain t(2049, 1025, 1.0f); // rows (Z), columns (X)
+    const int gaps[] = {255, 256, 257, 300, 600};
+    std::vector<int> walls{40};
+    for (int g : gaps) walls.push_back(walls.back() + g);
+    for (int r = 0; r < t.rows(); ++r)
+        for (int c = 0; c < t.cols(); ++c) t.raw(r, c) = 1;
+    int height = 12;
+    for (int w : walls) {
+        for (int r = w; r < w + 3; ++r)
+            for (int c = 0; c < t.cols(); ++c) t.raw(r, c) = std::uint16_t(height + c % 7);
+        height = 10 + (height + 6 - 10) * (w + 300) / w; // above the horizon the previous wall left
+    }
+    const DataSet ds{std::move(t), {}, {}};
+    FloatingHorizon fh(ds.terrain);
+    Camera cam;
+    cam.eye = {512.0, 10.0, 8.0};
+    cam.heading = 0; // south: +Z, along the columns
+    cam.pitch = 0;
+    cam.height = 270;
+    cam.far = 2040;
+    for (CastKernel kernel : {CastKernel::X86_64_v3, CastKernel::X86_64_v4}) {
+        if (!cast_kernel_available(kernel)) continue;
+        for (int width : {480, 41}) { // whole groups of 16 lanes, and a partial one
+            cam.width = width;
+            RaycastOptions portable, fast;
+            portable.kernel = CastKernel::Portable;
+            fast.kernel = kernel;
+            ColorImage c1, c2;
+            DepthImage d1, d2;
+            fh.render(cam, ds.environment, portable, c1, d1);
+            fh.render(cam, ds.environment, fast, c2, d2);
+            EXPECT_EQ(0, std::memcmp(c1.pixels.data(), c2.pixels.data(), c1.pixels.size() * sizeof(Rgb8)))
+                << "width " << width;
+            EXPECT_EQ(0, std::memcmp(d1.pixels.data(), d2.pixels.data(), d1.pixels.size() * sizeof(float)))
+                << "width " << width;
+            // Every wall shows: the middle column's depths take the ground's
+            // and each wall's slices.
+            std::vector<float> seen;
+            for (int y = 0; y < cam.height; ++y) seen.push_back(d2.at(width / 2, y));
+            std::sort(seen.begin(), seen.end());
+            seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+            EXPECT_GE(seen.size(), walls.size() + 2) << "width " << width; // and sky (1)
+        }
+    }
+}
