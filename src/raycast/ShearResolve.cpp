@@ -568,7 +568,7 @@ struct AirLanes16 : AirParams {
 // resolve_rows_avx2; a full block's pixels go to the images straight from
 // the registers. The tables and the lanes are read into locals first
 // (SliceTables, FogParams).
-template <bool kTerrain, bool kSky, bool kEven, class Lanes>
+template <bool kTerrain, bool kSky, bool kEven, bool kDirect, class Lanes>
 OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, const Lanes& lanes_in,
                                                    const ShearBlock& blk, int H, int j0, int j1,
                                                    const std::uint32_t* color, const std::uint32_t* slice,
@@ -582,7 +582,6 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
     const __m512i rgb_bytes =
         _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
     const __m512i rgb_words = _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15);
-    const bool direct = blk.n == kShearBlock;
     for (int j = j0; j < j1; ++j) {
         const float mj = st.row_m[j];
         const __m512 m = _mm512_set1_ps(mj), m2 = _mm512_set1_ps(mj * mj);
@@ -613,7 +612,7 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
                 depth = kSky ? _mm512_mask_blend_ps(terrain, one, z) : z;
             }
             const __m512i pixel = lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c);
-            if (direct) {
+            if constexpr (kDirect) {
                 const __m512i rgb = _mm512_permutexvar_epi32(rgb_words, _mm512_shuffle_epi8(pixel, rgb_bytes));
                 _mm512_mask_storeu_epi32(reinterpret_cast<char*>(out_c + row + i), __mmask16(0x0FFF), rgb);
                 _mm512_storeu_ps(out_d + row + i, depth);
@@ -622,7 +621,7 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
                 _mm512_store_ps(zs + i, depth);
             }
         }
-        if (!direct) write_run(px, zs, blk.n, out_c + row, out_d + row);
+        if constexpr (!kDirect) write_run(px, zs, blk.n, out_c + row, out_d + row);
     }
 }
 #endif
@@ -801,8 +800,12 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
         const auto avx512 = [&](const auto& lanes) {
             resolve_bands(t, H, jmin, jmax, [&](auto b) {
                 using B = decltype(b);
-                resolve_rows_avx512<B::kTerrain, B::kSky, B::kEven>(t, lanes, blk, H, b.j0, b.j1, color, slice,
-                                                                   out_c, out_d, W);
+                if (blk.n == kShearBlock) // a full block: the pixels straight to the images
+                    resolve_rows_avx512<B::kTerrain, B::kSky, B::kEven, true>(t, lanes, blk, H, b.j0, b.j1, color,
+                                                                             slice, out_c, out_d, W);
+                else
+                    resolve_rows_avx512<B::kTerrain, B::kSky, B::kEven, false>(t, lanes, blk, H, b.j0, b.j1, color,
+                                                                              slice, out_c, out_d, W);
             });
         };
         if (t.air) avx512(AirLanes16(t));
