@@ -292,10 +292,10 @@ inline float row_guess_margin(const float* rows, int nrows, float m0, float inv_
 // (column-major: kLanePaintRows rows from the horizon up in one store, as the
 // scalar cast does row by row), the color with the slice's low bits
 // (kSliceLowBits); the stripes are transposed into the block at the end, and
-// the slice indices restored row by row from the row below and the jumps. The tests of run skipping are cast_run's, due at the same slices
-// with the same outcome, made for all the lanes due at a slice at once
-// (LaneRuns, runs_below); when all lanes skip: on to the first slice where a
-// test is due.
+// the slice indices restored row by row from the row below and the jumps.
+// The tests of run skipping are cast_run's, due at the same slices with the
+// same outcome, made for all the lanes due at a slice at once (LaneRuns,
+// runs_below); when all lanes skip: on to the first slice where a test is due.
 long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, std::uint32_t* color,
                      std::uint32_t* slice, int* jend) {
     const Columns& cc = f.columns;
@@ -583,7 +583,8 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     }
     // The stripes to the block's rows [0, jend) of each column, 16 x 16 tiles
     // transposed; each row's slices from the row below's and its low bits,
-    // or from the lane's next jump where it starts at the row.
+    // or from the lane's next jump where it starts at the row (row 0 always:
+    // a lane's first rise is a jump).
     int top = 0;
     for (int l = 0; l < c1 - c0; ++l) top = std::max(top, jend[l]);
     const __mmask16 lanes = __mmask16((1u << (c1 - c0)) - 1);
@@ -618,8 +619,9 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
                 jump_slice_v = _mm512_load_si512(jump_slice);
             }
             below = ks;
-            _mm512_mask_storeu_epi32(color + std::ptrdiff_t(r0 + r) * kBlock, lanes, _mm512_and_si512(v[r], color_mask));
-            _mm512_mask_storeu_epi32(slice + std::ptrdiff_t(r0 + r) * kBlock, lanes, ks);
+            const std::ptrdiff_t row_at = std::ptrdiff_t(r0 + r) * kBlock;
+            _mm512_mask_storeu_epi32(color + row_at, lanes, _mm512_and_si512(v[r], color_mask));
+            _mm512_mask_storeu_epi32(slice + row_at, lanes, ks);
         }
     }
     return visited;

@@ -565,9 +565,9 @@ struct AirLanes16 : AirParams {
 
 // resolve_rows_avx2 on 16 lanes (FogLanes16 or AirLanes16): the same
 // operations in the same order, so the same bits. kEven: as
-// resolve_rows_avx2; a full block's pixels go to the images straight from
-// the registers. The tables and the lanes are read into locals first
-// (SliceTables, FogParams).
+// resolve_rows_avx2; kDirect: a full block (blk.n == kShearBlock), whose
+// pixels go to the images straight from the registers. The tables and the
+// lanes are read into locals first (SliceTables, FogParams).
 template <bool kTerrain, bool kSky, bool kEven, bool kDirect, class Lanes>
 OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, const Lanes& lanes_in,
                                                    const ShearBlock& blk, int H, int j0, int j1,
