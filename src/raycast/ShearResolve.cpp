@@ -51,12 +51,15 @@ constexpr int kWritePrefetchRows = 8;
 }
 
 // The image row of block row j (bottom-up), prefetching the one kWritePrefetchRows above.
-// A full block's run has a constant length, so that its prefetches unroll.
+// A full block's run has a constant length, so that its prefetches unroll;
+// kFull: the caller knows the block is full (else GCC may merge the two
+// calls into one loop).
+template <bool kFull = false>
 [[gnu::always_inline]] inline std::size_t image_row(const ShearBlock& blk, int H, int j, std::size_t W,
                                                     const Rgb8* out_c, const float* out_d) {
     if (j + kWritePrefetchRows < H) {
         const std::size_t ahead = std::size_t(H - 1 - j - kWritePrefetchRows) * W;
-        if (blk.n == kShearBlock) prefetch_run(out_c, out_d, ahead, kShearBlock);
+        if (kFull || blk.n == kShearBlock) prefetch_run(out_c, out_d, ahead, kShearBlock);
         else prefetch_run(out_c, out_d, ahead, blk.n);
     }
     return std::size_t(H - 1 - j) * W;
@@ -587,7 +590,7 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
         const __m512 m = _mm512_set1_ps(mj), m2 = _mm512_set1_ps(mj * mj);
         const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
         const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
-        const std::size_t row = image_row(blk, H, j, W, out_c, out_d);
+        const std::size_t row = image_row<kDirect>(blk, H, j, W, out_c, out_d);
         alignas(64) std::uint32_t px[kShearBlock];
         alignas(64) float zs[kShearBlock];
         for (int i = 0; i < kShearBlock; i += 16) {
