@@ -588,12 +588,14 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     int top = 0;
     for (int l = 0; l < c1 - c0; ++l) top = std::max(top, jend[l]);
     const __mmask16 lanes = __mmask16((1u << (c1 - c0)) - 1);
-    alignas(64) int next_jump[kLanes], jump_at[kLanes], jump_slice[kLanes];
-    for (int l = 0; l < kLanes; ++l) {
-        next_jump[l] = 0;
-        jump_at[l] = jumps[l] > 0 ? int(jump_row[l * jumps_cap]) : INT_MAX;
-        jump_slice[l] = jumps[l] > 0 ? int(jump_k[l * jumps_cap]) : 0;
-    }
+    alignas(64) int next_jump[kLanes] = {}, jump_at[kLanes], jump_slice[kLanes];
+    // Lane l's jump next_jump[l] (row INT_MAX when none is left).
+    const auto load_jump = [&](int l) {
+        const int i = next_jump[l];
+        jump_at[l] = i < jumps[l] ? int(jump_row[l * jumps_cap + i]) : INT_MAX;
+        jump_slice[l] = i < jumps[l] ? int(jump_k[l * jumps_cap + i]) : 0;
+    };
+    for (int l = 0; l < kLanes; ++l) load_jump(l);
     __m512i jump_at_v = _mm512_load_si512(jump_at), jump_slice_v = _mm512_load_si512(jump_slice);
     const __m512i low_mask = _mm512_set1_epi32(kSliceLowMask), color_mask = _mm512_set1_epi32(0x00FFFFFF);
     __m512i below = _mm512_setzero_si512(); // the slices of the row below
@@ -611,9 +613,8 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
                 _mm512_store_si512(jump_slice, jump_slice_v);
                 for (unsigned m = jump; m; m &= m - 1) {
                     const int l = std::countr_zero(m);
-                    const int i = ++next_jump[l];
-                    jump_at[l] = i < jumps[l] ? int(jump_row[l * jumps_cap + i]) : INT_MAX;
-                    jump_slice[l] = i < jumps[l] ? int(jump_k[l * jumps_cap + i]) : 0;
+                    ++next_jump[l];
+                    load_jump(l);
                 }
                 jump_at_v = _mm512_load_si512(jump_at);
                 jump_slice_v = _mm512_load_si512(jump_slice);
