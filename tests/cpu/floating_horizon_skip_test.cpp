@@ -35,6 +35,19 @@ std::uint16_t nearest(const Terrain& t, std::int64_t gx, std::int64_t gz) {
     return t.raw(int(gz >> 32), int(gx >> 32));
 }
 
+// A level view from (512, 10, 8) looking south (+Z), across walls that run
+// along X.
+Camera looking_south(int width, int height, double far) {
+    Camera cam;
+    cam.eye = {512.0, 10.0, 8.0};
+    cam.heading = 0;
+    cam.pitch = 0;
+    cam.width = width;
+    cam.height = height;
+    cam.far = far;
+    return cam;
+}
+
 // Renders a sweep of views with and without skipping: every pixel's color
 // and depth must be bit-identical. Returns the samples skipping spared over
 // the sweep (so that the comparison is not between two casts that skipped
@@ -231,13 +244,7 @@ TEST(FloatingHorizonRunSkipping, SkipsBehindAWallOnTheLodLevels) {
         for (int c = 0; c < t.cols(); ++c) t.raw(r, c) = r >= 58 && r < 62 ? 12 : r >= 1000 ? 200 : 1;
     const DataSet ds{std::move(t), {}, {}};
     FloatingHorizon fh(ds.terrain);
-    Camera cam;
-    cam.eye = {512.0, 10.0, 8.0};
-    cam.heading = 0; // south: +Z
-    cam.pitch = 0;
-    cam.width = 160;
-    cam.height = 90;
-    cam.far = 1100;
+    const Camera cam = looking_south(160, 90, 1100);
     RaycastOptions skip, full;
     skip.lod = full.lod = true;
     skip.lod_pixels = full.lod_pixels = 0.3;
@@ -363,12 +370,7 @@ TEST(FloatingHorizonCastKernels, SameSlicesAfterLongGaps) {
     }
     const DataSet ds{std::move(t), {}, {}};
     FloatingHorizon fh(ds.terrain);
-    Camera cam;
-    cam.eye = {512.0, 10.0, 8.0};
-    cam.heading = 0; // south: +Z
-    cam.pitch = 0;
-    cam.height = 270;
-    cam.far = 2040;
+    Camera cam = looking_south(480, 270, 2040);
     for (CastKernel kernel : {CastKernel::X86_64_v3, CastKernel::X86_64_v4}) {
         if (!cast_kernel_available(kernel)) continue;
         for (int width : {480, 41}) { // whole groups of 16 lanes, and a partial one
