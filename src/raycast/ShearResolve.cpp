@@ -581,10 +581,17 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 d_first = _mm512_set1_ps(t.d_first), d_step = _mm512_set1_ps(t.d_step);
     const __m512i even = _mm512_set1_epi32(t.even);
-    // 16 packed colors to 48 bytes of Rgb8: 12 bytes per 128-bit lane, then the lanes joined.
+    // Packed colors to Rgb8: 12 bytes per 128-bit lane (rgb_bytes), then a
+    // full block's 32 pixels' 96 bytes joined from the lanes of both halves
+    // into one 64-byte and one 32-byte store (first_words, last_words). Both
+    // stores stay within the block's own pixels; a masked store of each
+    // half's 48 bytes instead made the resolve of a 4K frame about 10 %
+    // slower on a Zen 4 (masked stores to memory are slow there).
+    static_assert(kShearBlock == 32);
     const __m512i rgb_bytes =
         _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
-    const __m512i rgb_words = _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 15, 15, 15, 15);
+    const __m512i first_words = _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 16, 17, 18, 20);
+    const __m256i last_words = _mm256_setr_epi32(5, 6, 8, 9, 10, 12, 13, 14);
     for (int j = j0; j < j1; ++j) {
         const float mj = st.row_m[j];
         const __m512 m = _mm512_set1_ps(mj), m2 = _mm512_set1_ps(mj * mj);
@@ -593,6 +600,7 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
         const std::size_t row = image_row<kDirect>(blk, H, j, W, out_c, out_d);
         alignas(64) std::uint32_t px[kShearBlock];
         alignas(64) float zs[kShearBlock];
+        __m512i lanes_rgb[2]; // kDirect: each half's pixels, 12 bytes per 128-bit lane
         for (int i = 0; i < kShearBlock; i += 16) {
             const __m512 len = _mm512_sqrt_ps(_mm512_add_ps(_mm512_loadu_ps(blk.len2 + i), m2));
             const __mmask16 terrain =
@@ -616,15 +624,22 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
             }
             const __m512i pixel = lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c);
             if constexpr (kDirect) {
-                const __m512i rgb = _mm512_permutexvar_epi32(rgb_words, _mm512_shuffle_epi8(pixel, rgb_bytes));
-                _mm512_mask_storeu_epi32(reinterpret_cast<char*>(out_c + row + i), __mmask16(0x0FFF), rgb);
+                lanes_rgb[i / 16] = _mm512_shuffle_epi8(pixel, rgb_bytes);
                 _mm512_storeu_ps(out_d + row + i, depth);
             } else {
                 _mm512_store_si512(px + i, pixel);
                 _mm512_store_ps(zs + i, depth);
             }
         }
-        if constexpr (!kDirect) write_run(px, zs, blk.n, out_c + row, out_d + row);
+        if constexpr (kDirect) {
+            char* oc = reinterpret_cast<char*>(out_c + row);
+            _mm512_storeu_si512(oc, _mm512_permutex2var_epi32(lanes_rgb[0], first_words, lanes_rgb[1]));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(oc + 64),
+                                _mm512_castsi512_si256(_mm512_permutexvar_epi32(
+                                    _mm512_castsi256_si512(last_words), lanes_rgb[1])));
+        } else {
+            write_run(px, zs, blk.n, out_c + row, out_d + row);
+        }
     }
 }
 #endif
