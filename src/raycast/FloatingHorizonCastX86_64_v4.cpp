@@ -479,10 +479,14 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             // Prefetch the samples kAhead slices on of the lanes casting now
             // (most cast on: a run that paints is followed by one cast
             // without a test); the others read sample 0.
+            // The indices are read back from memory (volatile): 16 loads cost
+            // less than the lane extractions GCC emits for them otherwise
+            // (4K frame about 1 % faster).
             alignas(64) int pv[kLanes];
             _mm512_store_si512(pv, _mm512_maskz_min_epu32(__mmask16(active), ahead.sample(cols_v), last_v));
+            const volatile int* stored = pv;
             for (int l = 0; l < kLanes; ++l)
-                _mm_prefetch(reinterpret_cast<const char*>(records + pv[l]), _MM_HINT_T0);
+                _mm_prefetch(reinterpret_cast<const char*>(records + stored[l]), _MM_HINT_T0);
         }
         if (const __mmask16 fresh = act & ~fetched) { // lanes that started a run at this slice
             const __m512i ci = at.sample(cols_v);
