@@ -127,7 +127,7 @@ void cast_shear(FloatingHorizonState& s, const Camera& camera, const Environment
     shear_column_planes(camera, f.columns.a);
     // The columns' clipping (in parallel itself) beside the rows' tables:
     // the serial setup is a few per cent of a 4K frame.
-    parallel::invoke([&] { clip_columns(f.view, s.terrain.terrain, f.slices.d, f.columns); },
+    parallel::invoke([&] { clip_columns(f.view, s.terrain.terrain, f.slices, f.columns); },
                      [&] {
                          shear_rows(camera, f.rows);
                          slice_guesses(f.slopes, f.rows, f.guesses);

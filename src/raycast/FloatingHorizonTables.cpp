@@ -176,7 +176,31 @@ void guedes_column_planes(const Camera& camera, std::vector<double>& a) {
     for (int c = 0; c < camera.width; ++c) a[std::size_t(c)] = camera.u_of(c) / (fp * cp);
 }
 
-void clip_columns(const ViewAxes& view, const Terrain& terrain, const std::vector<double>& slice_d, Columns& columns) {
+namespace {
+
+// std::lower_bound (kUpper: std::upper_bound) of d over the slices' depths.
+// Within the evenly spaced first slices the spacing gives the answer to
+// within a slice or two, which a short walk makes exact; elsewhere, bisection
+// (two bisections per column over the 10 k slices of a 4K view with LOD took
+// about 0.1 ms of the frame's 0.17 ms setup).
+template <bool kUpper>
+int slice_bound(const Slices& slices, double d) {
+    const std::vector<double>& v = slices.d;
+    // Whether slice depth x lies before the answer (the predicate the std
+    // algorithms partition by, NaN included).
+    const auto before = [d](double x) { return kUpper ? !(d < x) : x < d; };
+    if (slices.even > 0 && d >= v[0] && d <= v[std::size_t(slices.even) - 1]) {
+        std::size_t k = std::min(std::size_t((d - v[0]) / slices.step), std::size_t(slices.even) - 1);
+        while (k > 0 && !before(v[k - 1])) --k;
+        while (k < v.size() && before(v[k])) ++k;
+        return int(k);
+    }
+    return int(std::partition_point(v.begin(), v.end(), before) - v.begin());
+}
+
+} // namespace
+
+void clip_columns(const ViewAxes& view, const Terrain& terrain, const Slices& slices, Columns& columns) {
     const double hs = terrain.h_scale();
     const std::vector<double>& a = columns.a;
     const std::size_t n = a.size();
@@ -196,8 +220,6 @@ void clip_columns(const ViewAxes& view, const Terrain& terrain, const std::vecto
         lo_d = std::max(lo_d, t0);
         hi_d = std::min(hi_d, t1);
     };
-    // Two binary searches over the slices per column (4K with LOD: 3840
-    // columns, about 10k slices), so the columns are shared out.
     parallel::for_each_range(std::size_t(0), n, std::size_t(512), [&](std::size_t begin, std::size_t end) {
         for (std::size_t c = begin; c < end; ++c) {
             const double ux = (view.fx + a[c] * view.rx) / hs, uz = (view.fz + a[c] * view.rz) / hs;
@@ -214,8 +236,8 @@ void clip_columns(const ViewAxes& view, const Terrain& terrain, const std::vecto
             // that far out still rounds to an edge sample (blocks) or is clamped (bilinear).
             lo -= 1e-9 * (1.0 + lo);
             hi += 1e-9 * (1.0 + hi);
-            columns.k0[c] = int(std::lower_bound(slice_d.begin(), slice_d.end(), lo) - slice_d.begin());
-            columns.k1[c] = int(std::upper_bound(slice_d.begin(), slice_d.end(), hi) - slice_d.begin());
+            columns.k0[c] = slice_bound<false>(slices, lo);
+            columns.k1[c] = slice_bound<true>(slices, hi);
             if (columns.k1[c] < columns.k0[c]) columns.k1[c] = columns.k0[c];
         }
     });

@@ -129,7 +129,7 @@ struct Columns {
     std::vector<double> ux, uz; // grid units per unit of view depth along the plane
     std::vector<int> k0, k1;    // slices [k0, k1) on the terrain (empty: k0 == k1)
 };
-void clip_columns(const ViewAxes& view, const Terrain& terrain, const std::vector<double>& slice_d, Columns& columns);
+void clip_columns(const ViewAxes& view, const Terrain& terrain, const Slices& slices, Columns& columns);
 
 // The shear cast's guess of the row a sample reaches (RowSearch), computed
 // from the raw height in fixed point: (raw ga + gb) >> kGuessBits. RowSearch's

@@ -8,7 +8,7 @@ void prepare_tilt(FloatingHorizonState& s, const Camera& camera, const Environme
     const TiltRows& tr = s.tilt_rows;
     CastFrame& f = s.frame;
     s.prepare_slices(camera, options, camera.near * tr.w_min, camera.far * tr.w_max, fp_h);
-    clip_columns(f.view, s.terrain.terrain, f.slices.d, f.columns);
+    clip_columns(f.view, s.terrain.terrain, f.slices, f.columns);
     tilt_cast_rows(tr, f.rows);
     s.fog.build(env.fog_density, tilt_fog_reach(camera));
     if (s.imagery.bound()) {

@@ -231,13 +231,48 @@ TEST(FloatingHorizonTables, ColumnsClippedToTheTerrain) {
     const ViewAxes view = view_axes(small_camera(0, Projection::Shear), 10.0);
     Columns cols;
     cols.a = {0.0, -0.25, 0.25, 2.0};
-    clip_columns(view, t, {10, 20, 30, 40}, cols);
+    Slices slices;
+    slices.d = {10, 20, 30, 40};
+    clip_columns(view, t, slices, cols);
     EXPECT_EQ(cols.k0, (std::vector<int>{1, 1, 1, 0}));
     EXPECT_EQ(cols.k1, (std::vector<int>{4, 4, 2, 0}));
     EXPECT_NEAR(cols.ux[0], 0.0, 1e-15);
     EXPECT_DOUBLE_EQ(cols.uz[0], 0.1);
     EXPECT_DOUBLE_EQ(cols.ux[1], 0.025);
     EXPECT_DOUBLE_EQ(cols.ux[3], -0.2);
+}
+
+// The evenly spaced slices' bounds come from their spacing and a short walk,
+// the rest from bisection: both give every column the slices bisection over
+// all of them gives. A 2000-cell square seen from outside it and from within,
+// slices one cell (h_scale 10) apart up to d = 5000, then LOD's coarser ones.
+TEST(FloatingHorizonTables, ColumnsClippedAlikeBySpacingAndBisection) {
+    const Terrain t(200, 200, 10.0f, 1.0f, 0.0f);
+    SlicePlacement p = placement(0.5, 20000);
+    p.fp_h = 500;
+    p.lod = true;
+    p.lod_levels = 4;
+    Slices spaced;
+    place_slices(p, spaced);
+    ASSERT_GT(spaced.even, 400);
+    ASSERT_LT(spaced.even, int(spaced.d.size()));
+    Slices bisected = spaced;
+    bisected.even = 0;
+    for (const double eye_x : {-300.0, 1000.0, 2500.0}) {
+        Camera camera = small_camera(0, Projection::Shear);
+        camera.eye = {eye_x, 4.0, eye_x * 0.7};
+        for (const double heading : {0.0, 33.0, 90.0, 200.0}) {
+            camera.heading = heading;
+            const ViewAxes view = view_axes(camera, 10.0);
+            Columns by_spacing, by_bisection;
+            for (int c = -400; c <= 400; ++c) by_spacing.a.push_back(c / 401.0);
+            by_bisection.a = by_spacing.a;
+            clip_columns(view, t, spaced, by_spacing);
+            clip_columns(view, t, bisected, by_bisection);
+            EXPECT_EQ(by_spacing.k0, by_bisection.k0) << eye_x << " " << heading;
+            EXPECT_EQ(by_spacing.k1, by_bisection.k1) << eye_x << " " << heading;
+        }
+    }
 }
 
 // Rows -0.75, -0.25, 0.25, 0.75: RowSearch's m0 = -0.75, 1/step = 2. Slice
