@@ -34,7 +34,7 @@ namespace {
 
 constexpr int kLanes = 16;
 // Slices ahead of the cast that the lanes' samples are prefetched: the
-// gathers' loads wait on the terrain's lines (far past L2), and the window of
+// samples' loads wait on the terrain's lines (far past L2), and the window of
 // out-of-order execution holds only a couple of slices.
 constexpr int kAhead = 8;
 // Rows a lane paints from its horizon up in one store (the rows it does not
@@ -126,18 +126,44 @@ private:
     std::size_t size_ = 0;
 };
 
+// 16 records as 8 quadword pairs (a, b) split into their low halves (packed
+// colors) and high halves (raw heights).
+[[gnu::always_inline]] inline void split_records(__m512i a, __m512i b, __m512i& word, __m512i& raw) {
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    word = _mm512_permutex2var_epi32(a, even, b);
+    raw = _mm512_permutex2var_epi32(a, _mm512_add_epi32(even, _mm512_set1_epi32(1)), b);
+}
+
 // The records (CastTerrain::records) of the lanes in m at samples idx, as
-// two gathers of 8: their low halves (packed colors) and high halves (raw
-// heights); 0 in the other lanes.
+// two gathers of 8; 0 in the other lanes.
 [[gnu::always_inline]] inline void gather_records(__mmask16 m, __m512i idx, const std::uint64_t* rec, __m512i& word,
                                                   __m512i& raw) {
     const __m512i a = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), __mmask8(m),
                                                   _mm512_castsi512_si256(idx), rec, 8);
     const __m512i b = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(), __mmask8(m >> 8),
                                                   _mm512_extracti64x4_epi64(idx, 1), rec, 8);
-    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-    word = _mm512_permutex2var_epi32(a, even, b);
-    raw = _mm512_permutex2var_epi32(a, _mm512_add_epi32(even, _mm512_set1_epi32(1)), b);
+    split_records(a, b, word, raw);
+}
+
+// The records of all 16 lanes at samples idx (each a sample of the grid), as
+// 16 loads: on Zen 4 that is faster than gather_records' two gathers (from
+// L1, 3.8 against 5.8 ns per 16 records; the 4K frame about 2 % faster). The
+// indices are read back from memory (volatile), as for the prefetches.
+[[gnu::always_inline]] inline void load_records(__m512i idx, const std::uint64_t* rec, __m512i& word, __m512i& raw) {
+    alignas(64) int stored[kLanes];
+    _mm512_store_si512(stored, idx);
+    const volatile int* at = stored;
+    __m256i pairs[4]; // records 4q .. 4q + 3
+    for (int q = 0; q < 4; ++q) {
+        const auto pair = [&](int l) {
+            const int i0 = at[l], i1 = at[l + 1];
+            return _mm_insert_epi64(_mm_cvtsi64_si128(static_cast<long long>(rec[i0])),
+                                    static_cast<long long>(rec[i1]), 1);
+        };
+        pairs[q] = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(4 * q)), pair(4 * q + 2), 1);
+    }
+    split_records(_mm512_inserti64x4(_mm512_castsi256_si512(pairs[0]), pairs[1], 1),
+                  _mm512_inserti64x4(_mm512_castsi256_si512(pairs[2]), pairs[3], 1), word, raw);
 }
 
 // A 16 x 16 tile of 32-bit values transposed: v[i] element e becomes v[e] element i.
@@ -284,7 +310,7 @@ inline float row_guess_margin(const float* rows, int nrows, float m0, float inv_
 // casts them without a light mask, into the block's scratch (color, slice:
 // column c0's entries; row stride kBlock). Lane l samples slice k while its
 // column casts (a run that its tests did not skip): the samples of the lanes
-// are gathered as {color, height} records (CastTerrain::records), and the
+// are read as {color, height} records (CastTerrain::records), and the
 // first row not below each sample found at once from RowSearch's guess
 // (row_guess_margin: the table is read only for a guess close to a row), so
 // that a lane rises when that row lies above its horizon and no lane waits on
@@ -388,8 +414,8 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
     const LaneRuns coarse_runs(t.max_pyramid, coarse, c1 - c0), fine_runs(t.max_pyramid, fine, c1 - c0);
 
     long long visited = 0;
-    // The samples of slice k, gathered at the end of slice k - 1 for the
-    // lanes in `fetched` (the rest when their run starts).
+    // The samples of slice k, loaded at the end of slice k - 1 for the
+    // lanes in `fetched` (the rest gathered when their run starts).
     __m512i next_raw = _mm512_setzero_si512(), next_word = next_raw;
     __mmask16 fetched = 0;
     unsigned active = 0; // lanes casting slice k
@@ -580,9 +606,9 @@ long long cast_lanes(const CastTerrain& t, const CastFrame& f, int c0, int c1, s
             continue;
         }
         // The next slice's samples of the lanes casting now, asked for before
-        // this slice's painting retires (clamped: a lane may end here).
-        const __m512i ci = _mm512_min_epu32(at.sample(cols_v), last_v);
-        gather_records(__mmask16(active), ci, records, next_word, next_raw);
+        // this slice's painting retires (every lane's, clamped: a lane may
+        // end here or not cast).
+        load_records(_mm512_min_epu32(at.sample(cols_v), last_v), records, next_word, next_raw);
         fetched = __mmask16(active);
     }
     // The stripes to the block's rows [0, jend) of each column, 16 x 16 tiles
