@@ -37,15 +37,18 @@ namespace {
 // at 3840x2160 on a Zen 1 EPYC: resolve 25-31 ms against 28-36 ms without).
 constexpr int kWritePrefetchRows = 8;
 
-// Prefetches for writing the run of n pixels of image row `row` (color and depth).
+// Prefetches for writing the run of n pixels of image row `row` (color, and
+// depth unless `streamed`).
 // Always inlined: GCC's interprocedural analysis finds a function that only
 // prefetches free of side effects (__builtin_prefetch is a const built-in)
 // and deletes the calls to it, prefetches and all.
-[[gnu::always_inline]] inline void prefetch_run(const Rgb8* out_c, const float* out_d, std::size_t row, int n) {
+[[gnu::always_inline]] inline void prefetch_run(const Rgb8* out_c, const float* out_d, std::size_t row, int n,
+                                                bool streamed) {
     const char* pc = reinterpret_cast<const char*>(out_c + row);
     const char* pd = reinterpret_cast<const char*>(out_d + row);
     for (int b = 0; b < n * 3; b += 64) __builtin_prefetch(pc + b, 1);
     __builtin_prefetch(pc + n * 3 - 1, 1);
+    if (streamed) return;
     for (int b = 0; b < n * 4; b += 64) __builtin_prefetch(pd + b, 1);
     __builtin_prefetch(pd + n * 4 - 1, 1);
 }
@@ -53,14 +56,15 @@ constexpr int kWritePrefetchRows = 8;
 // The image row of block row j (bottom-up), prefetching the one kWritePrefetchRows above.
 // A full block's run has a constant length, so that its prefetches unroll;
 // kFull: the caller knows the block is full (else GCC may merge the two
-// calls into one loop).
+// calls into one loop). streamed: the depth rows are written with streaming
+// stores (resolve_rows_avx512), which need no prefetch.
 template <bool kFull = false>
 [[gnu::always_inline]] inline std::size_t image_row(const ShearBlock& blk, int H, int j, std::size_t W,
-                                                    const Rgb8* out_c, const float* out_d) {
+                                                    const Rgb8* out_c, const float* out_d, bool streamed = false) {
     if (j + kWritePrefetchRows < H) {
         const std::size_t ahead = std::size_t(H - 1 - j - kWritePrefetchRows) * W;
-        if (kFull || blk.n == kShearBlock) prefetch_run(out_c, out_d, ahead, kShearBlock);
-        else prefetch_run(out_c, out_d, ahead, blk.n);
+        if (kFull || blk.n == kShearBlock) prefetch_run(out_c, out_d, ahead, kShearBlock, streamed);
+        else prefetch_run(out_c, out_d, ahead, blk.n, false);
     }
     return std::size_t(H - 1 - j) * W;
 }
@@ -569,13 +573,14 @@ struct AirLanes16 : AirParams {
 // resolve_rows_avx2 on 16 lanes (FogLanes16 or AirLanes16): the same
 // operations in the same order, so the same bits. kEven: as
 // resolve_rows_avx2; kDirect: a full block (blk.n == kShearBlock), whose
-// pixels go to the images straight from the registers. The tables and the
-// lanes are read into locals first (SliceTables, FogParams).
+// pixels go to the images straight from the registers, the depth with
+// streaming stores where `stream_depth` (each row's run whole cache lines).
+// The tables and the lanes are read into locals first (SliceTables, FogParams).
 template <bool kTerrain, bool kSky, bool kEven, bool kDirect, class Lanes>
 OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, const Lanes& lanes_in,
                                                    const ShearBlock& blk, int H, int j0, int j1,
                                                    const std::uint32_t* color, const std::uint32_t* slice,
-                                                   Rgb8* out_c, float* out_d, std::size_t W) {
+                                                   Rgb8* out_c, float* out_d, std::size_t W, bool stream_depth) {
     const Lanes lanes = lanes_in;
     const SliceTables st(t);
     const __m512 one = _mm512_set1_ps(1.0f);
@@ -597,7 +602,7 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
         const __m512 m = _mm512_set1_ps(mj), m2 = _mm512_set1_ps(mj * mj);
         const std::uint32_t* sc = color + std::size_t(j) * kShearBlock;
         const std::uint32_t* ss = slice + std::size_t(j) * kShearBlock;
-        const std::size_t row = image_row<kDirect>(blk, H, j, W, out_c, out_d);
+        const std::size_t row = image_row<kDirect>(blk, H, j, W, out_c, out_d, kDirect && stream_depth);
         alignas(64) std::uint32_t px[kShearBlock];
         alignas(64) float zs[kShearBlock];
         __m512i lanes_rgb[2]; // kDirect: each half's pixels, 12 bytes per 128-bit lane
@@ -625,7 +630,8 @@ OVERFLIGHT_RESOLVE_AVX512 void resolve_rows_avx512(const ShearResolveTables& t, 
             const __m512i pixel = lanes.template shade<kTerrain, kSky>(blk, i, m, len, d, terrain, c);
             if constexpr (kDirect) {
                 lanes_rgb[i / 16] = _mm512_shuffle_epi8(pixel, rgb_bytes);
-                _mm512_storeu_ps(out_d + row + i, depth);
+                if (stream_depth) _mm512_stream_ps(out_d + row + i, depth);
+                else _mm512_storeu_ps(out_d + row + i, depth);
             } else {
                 _mm512_store_si512(px + i, pixel);
                 _mm512_store_ps(zs + i, depth);
@@ -815,19 +821,29 @@ void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int
     if (kernel == ResolveKernel::Auto) kernel = fastest;
 #if OVERFLIGHT_RESOLVE_AVX2
     if (kernel == ResolveKernel::Avx512) {
+        // A full block's depth rows are whole cache lines where they start
+        // one (W a multiple of 16): streaming stores write them without
+        // reading them from memory first, the 4K frame about 5 % faster on
+        // a Zen 4 (the color's 96 bytes per row share lines with the next
+        // block's, so they are written as before). Streaming stores are
+        // weakly ordered: the block ends with a fence, so that the images
+        // are whole for whoever waits for the blocks.
+        const bool stream_depth =
+            blk.n == kShearBlock && W % 16 == 0 && reinterpret_cast<std::uintptr_t>(out_d) % 64 == 0;
         const auto avx512 = [&](const auto& lanes) {
             resolve_bands(t, H, jmin, jmax, [&](auto b) {
                 using B = decltype(b);
                 if (blk.n == kShearBlock) // a full block: the pixels straight to the images
                     resolve_rows_avx512<B::kTerrain, B::kSky, B::kEven, true>(t, lanes, blk, H, b.j0, b.j1, color,
-                                                                             slice, out_c, out_d, W);
+                                                                             slice, out_c, out_d, W, stream_depth);
                 else
                     resolve_rows_avx512<B::kTerrain, B::kSky, B::kEven, false>(t, lanes, blk, H, b.j0, b.j1, color,
-                                                                              slice, out_c, out_d, W);
+                                                                              slice, out_c, out_d, W, false);
             });
         };
         if (t.air) avx512(AirLanes16(t));
         else avx512(FogLanes16(t));
+        if (stream_depth) _mm_sfence();
         return;
     }
     const auto avx2 = [&](const auto& lanes) {
