@@ -152,11 +152,11 @@ private:
 [[gnu::always_inline]] inline void load_records(__m512i idx, const std::uint64_t* rec, __m512i& word, __m512i& raw) {
     alignas(64) int stored[kLanes];
     _mm512_store_si512(stored, idx);
-    const volatile int* at = stored;
+    const volatile int* index = stored;
     __m256i pairs[4]; // records 4q .. 4q + 3
     for (int q = 0; q < 4; ++q) {
         const auto pair = [&](int l) {
-            const int i0 = at[l], i1 = at[l + 1];
+            const int i0 = index[l], i1 = index[l + 1];
             return _mm_insert_epi64(_mm_cvtsi64_si128(static_cast<long long>(rec[i0])),
                                     static_cast<long long>(rec[i1]), 1);
         };

@@ -244,8 +244,8 @@ TEST(FloatingHorizonTables, ColumnsClippedToTheTerrain) {
 
 // The evenly spaced slices' bounds come from their spacing and a short walk,
 // the rest from bisection: both give every column the slices bisection over
-// all of them gives. A 2000-cell square seen from outside it and from within,
-// slices one cell (h_scale 10) apart up to d = 5000, then LOD's coarser ones.
+// all of them gives. A 200-cell square (h_scale 10) seen from outside it and
+// from within, slices one cell apart up to d = 5000, then LOD's coarser ones.
 TEST(FloatingHorizonTables, ColumnsClippedAlikeBySpacingAndBisection) {
     const Terrain t(200, 200, 10.0f, 1.0f, 0.0f);
     SlicePlacement p = placement(0.5, 20000);
