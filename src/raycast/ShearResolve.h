@@ -74,7 +74,8 @@ bool resolve_kernel_available(ResolveKernel kernel);
 // d_k m_j above the eye) and depth slice_depth[k]; the others get the sky
 // color of their ray's elevation (with air: and angle to the sun) and depth 1. The results are written to out_c/out_d (the
 // images at the block's first column, W pixels per row), blk.n pixels per
-// row and no more.
+// row and no more; the depth may be written with streaming stores, which a
+// fence orders before the call returns.
 void resolve_shear_block(const ShearResolveTables& t, const ShearBlock& blk, int H, const std::uint32_t* color,
                          const std::uint32_t* slice, Rgb8* out_c, float* out_d, std::size_t W,
                          ResolveKernel kernel = ResolveKernel::Auto);
